@@ -1,0 +1,193 @@
+// Mission and vehicle configuration as loaded from config/*.toml.
+//
+// This is start-up data: std::vector and std::string are fine here. The flight
+// software copies what it needs into fixed-capacity structures at initialisation;
+// the truth simulator builds its own models from the same data. SI units inside,
+// angles in radians; the TOML files use the units named in their keys (e.g.
+// `heading_deg`) and the loader converts.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace reentry::config {
+
+inline constexpr double kNotConstrained = std::numeric_limits<double>::infinity();
+
+/// Values over (alpha, Mach), row-major: values[i_alpha * mach.size() + i_mach].
+struct Table2D {
+  std::vector<double> alpha_rad;  // strictly increasing
+  std::vector<double> mach;       // strictly increasing
+  std::vector<double> values;     // alpha_rad.size() * mach.size()
+  bool empty() const { return values.empty(); }
+};
+
+/// y(x) with x strictly increasing.
+struct Table1D {
+  std::vector<double> x;
+  std::vector<double> y;
+};
+
+/// Aerodynamic increments of one control surface, one (alpha, Mach) table per deflection.
+struct ControlSurface {
+  std::string name;                     // "body_flap", "elevon"
+  int count = 1;                        // number of identical surfaces (elevons: 2, thesis 3.24)
+  double min_rad = 0.0;                 // deflection limits
+  double max_rad = 0.0;
+  std::vector<double> deflection_rad;   // strictly increasing, includes 0
+  std::vector<Table2D> dcl, dcd, dcm;   // one per deflection, same grid as the base tables
+};
+
+/// Query outside the table range: clamp to the edge (default), or reject.
+enum class OutOfRangePolicy { kClamp, kError };
+
+struct AeroModel {
+  std::string source;                   // public source or documented model, quoted in the file
+  double reference_length_m = 0.0;      // pitching-moment reference length
+  Table2D cl, cd;                       // basic (untrimmed, surfaces neutral)
+  Table2D cm;                           // empty when no moment data exists (trim then unavailable)
+  std::vector<ControlSurface> surfaces; // trim priority order: body flap first, then elevons (thesis 3.4)
+  double flap_fixed_rad = 0.0;          // body-flap setting used below q_flap_fixed_Pa (thesis 5.5)
+  double q_flap_fixed_Pa = 100.0;
+  OutOfRangePolicy out_of_range = OutOfRangePolicy::kClamp;
+};
+
+struct Vehicle {
+  std::string name;
+  double mass_kg = 0.0;
+  double reference_area_m2 = 0.0;
+  double nose_radius_m = 0.0;
+  AeroModel aero;
+};
+
+/// State relative to the rotating Earth, spherical coordinates.
+struct SphericalState {
+  double altitude_m = 0.0;
+  double longitude_rad = 0.0;
+  double latitude_rad = 0.0;
+  double velocity_mps = 0.0;      // ground-relative speed
+  double flight_path_rad = 0.0;   // gamma (negative: descending)
+  double heading_rad = 0.0;       // chi, from North, clockwise
+};
+
+struct TaemInterface {
+  double altitude_m = 0.0;
+  double velocity_mps = 0.0;
+  double longitude_rad = 0.0;     // aim point
+  double latitude_rad = 0.0;
+  double heading_rad = 0.0;       // required heading at TAEM (towards the HAC)
+  // Tolerances (thesis 3.1.2 for X-33 / HORUS; adopted and justified in the file otherwise).
+  double range_tol_m = 0.0;       // distance to the aim point
+  double altitude_tol_m = 0.0;
+  double mach_target = 0.0;       // 0: not specified
+  double mach_tol = kNotConstrained;
+  double flight_path_rad = 0.0;
+  double flight_path_tol_rad = kNotConstrained;
+  double heading_tol_rad = 0.0;
+  double hac_radius_m = 0.0;      // heading-alignment circle radius
+};
+
+struct PathConstraints {
+  double heat_flux_max_Wpm2 = kNotConstrained;
+  double heat_load_max_Jpm2 = kNotConstrained;
+  double load_factor_max_g = kNotConstrained;      // body-normal, thesis 3.7
+  double q_alpha_max_Pa_rad = kNotConstrained;
+  double dynamic_pressure_max_Pa = kNotConstrained;
+  double alpha_max_rad = 0.0;
+  double alpha_rate_max_radps = 0.0;
+  double sigma_rate_max_radps = 0.0;
+  double alpha_accel_max_radps2 = 0.0;
+  double sigma_accel_max_radps2 = 0.0;
+};
+
+struct GuidanceParams {
+  double gnc_rate_hz = 10.0;
+  int plan_latency_ticks = 5;            // lockstep: plan requested at k is adopted at k + L
+  double replan_period_s = 50.0;
+  double replan_drag_error_frac = 0.15;  // replan when |D - Dref| / Dref exceeds this
+  std::string drag_profile = "smooth";   // "three_segment" (thesis 7.2) or "smooth"
+  std::string initial_drag = "actual";   // "actual" or "lmin" (thesis 7.6)
+  std::string onboard_atmosphere = "exponential";  // "exponential" or "table"
+  int rk4_steps = 600;                   // reduced-order integration steps
+  int max_length_iterations = 20;
+  double downrange_tol_m = 1500.0;
+  double crossrange_tol_m = 1000.0;
+  double initial_descent_drag_mps2 = 0.05 * 9.80665;  // hold attitude until sensed drag exceeds this
+  // Tracker (thesis 3.12-3.22); where zero, derived from vehicle/corridor data by the documented rule.
+  double zeta = 0.7071067811865476;
+  double omega0_radps = 0.0;
+  double k_integral = 0.0;
+  double k_heading = 0.0;
+  double k_heading_integral = 0.0;
+};
+
+struct SimParams {
+  std::string integrator = "rkf56";      // "rkf56" or "rkf78"
+  double rel_tol = 1e-10;
+  double abs_tol_position_m = 1e-4;
+  double abs_tol_velocity_mps = 1e-7;
+  std::string gravity = "j2j4";          // "central", "j2j4", "sh20"
+  std::string atmosphere = "us76";       // "us76", "exponential"
+  bool wind = true;
+  std::string shape = "oblate";          // "sphere", "oblate"
+  bool trim = true;                      // when moment data exist
+  std::string attitude = "ideal";        // "ideal" or "lag"
+  double attitude_time_constant_s = 0.5;
+  int transport_delay_ticks = 0;
+  double time_limit_s = 4000.0;
+};
+
+/// Half-widths of uniform dispersions (Monte Carlo), SI.
+struct Dispersions {
+  double entry_flight_path_rad = 0.0;
+  double entry_heading_rad = 0.0;
+  double entry_velocity_mps = 0.0;
+  double entry_position_rad = 0.0;       // lat/lon
+  double density_scale = 0.0;            // +-fraction
+  double density_perturbation = 0.0;     // amplitude of the altitude-correlated part
+  double density_correlation_m = 10000.0;
+  double cl_scale = 0.0;
+  double cd_scale = 0.0;
+  double mass_scale = 0.0;
+  double wind_scale_min = 1.0;
+  double wind_scale_max = 1.0;
+};
+
+/// Environment data files (paths resolved relative to the mission file).
+struct EnvironmentData {
+  std::string us76_table;
+  std::string gravity_coefficients;
+  std::string wind_profile;
+};
+
+struct Mission {
+  std::string name;                      // e.g. "x33"
+  std::string source_file;               // absolute path of the mission file
+  std::string notes;                     // provenance of the numbers
+  Vehicle vehicle;
+  SphericalState entry;
+  TaemInterface taem;
+  PathConstraints constraints;
+  Table1D alpha_profile;                 // alpha_rad over normalised energy E/E_entry (x increasing)
+  GuidanceParams guidance;
+  SimParams sim;
+  Dispersions dispersions;
+  EnvironmentData environment;
+};
+
+/// Result of loading: ok, or an error message naming file, key and value.
+struct LoadResult {
+  bool ok = false;
+  std::string error;
+  Mission mission;
+};
+
+/// Load and validate a mission file. `name_or_path` is a path to a .toml file or a
+/// mission name ("x33", "horus", "orbiter", "x38") looked up in the config directory.
+LoadResult load_mission(const std::string& name_or_path);
+
+/// One-line human summary: vehicle, mass, S_ref, entry and TAEM state, limits in SI.
+std::string summary_line(const Mission& mission);
+
+}  // namespace reentry::config
