@@ -1,0 +1,302 @@
+#!/usr/bin/python3
+"""Plots of one reentry run from its CSV export (tools/log2csv) and summary.json.
+
+usage: plot_run.py RUN_DIR [--log FILE] [--csv DIR] [--out DIR]
+
+Reads RUN_DIR/run_csv/*.csv (running tools/log2csv on RUN_DIR/run.lcm first when the folder is
+missing) and RUN_DIR/summary.json when present, and writes PNG files to RUN_DIR/plots/.
+A plot whose channels are missing is skipped with a warning; the exit status is 0 when at least
+one plot was written.
+
+Optional summary.json keys used:
+  entry_energy_Jpkg                       normalisation energy (else the first TRUTH energy)
+  taem_lat_deg, taem_lon_deg, hac_radius_km, taem_heading_deg (else final flown heading)
+  limit_heat_flux_kW_m2, limit_g, limit_q_kPa
+  corridor_hv: {velocity_mps: [...], altitude_low_m: [...], altitude_high_m: [...]}
+  corridor_drag: {e_norm: [...], drag_low_mps2: [...], drag_high_mps2: [...]}
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+EARTH_RADIUS_M = 6378137.0
+MU_M3PS2 = 3.986004418e14
+RHO0_KGPM3 = 1.225
+SCALE_HEIGHT_M = 7050.0
+DPI = 120
+
+
+def warn(msg):
+    print(f"plot_run: warning: {msg}", file=sys.stderr)
+
+
+def read_csv(path):
+    """Columns of a CSV file as float arrays (None if the file is absent or empty)."""
+    if not os.path.isfile(path):
+        return None
+    with open(path, newline="", encoding="utf-8") as f:
+        rows = list(csv.reader(f))
+    if len(rows) < 2:
+        return None
+    header, body = rows[0], rows[1:]
+    cols = {}
+    for j, name in enumerate(header):
+        vals = []
+        for r in body:
+            try:
+                vals.append(float(r[j]))
+            except (IndexError, ValueError):
+                vals.append(math.nan)
+        cols[name] = np.array(vals)
+    return cols
+
+
+def style(ax, xlabel, ylabel, title=None, legend=True):
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    if title:
+        ax.set_title(title)
+    ax.grid(True, alpha=0.4)
+    if legend and ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="best", fontsize=9)
+
+
+def save(fig, out_dir, name, made):
+    path = os.path.join(out_dir, name)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    made.append(path)
+    print(f"plot_run: wrote {path}")
+
+
+def destination(lat_rad, lon_rad, bearing_rad, dist_m):
+    """Great-circle destination point on a sphere."""
+    d = dist_m / EARTH_RADIUS_M
+    lat2 = np.arcsin(np.sin(lat_rad) * np.cos(d) + np.cos(lat_rad) * np.sin(d) * np.cos(bearing_rad))
+    lon2 = lon_rad + np.arctan2(np.sin(bearing_rad) * np.sin(d) * np.cos(lat_rad),
+                                np.cos(d) - np.sin(lat_rad) * np.sin(lat2))
+    return lat2, lon2
+
+
+def energy_norm(truth, summary):
+    e_entry = summary.get("entry_energy_Jpkg")
+    if not e_entry:
+        e_entry = truth["energy_Jpkg"][0]
+    return truth["energy_Jpkg"] / e_entry
+
+
+def plot_ground_track(truth, summary, out_dir, made):
+    fig, ax = plt.subplots(figsize=(10, 7))
+    lat = np.degrees(truth["latitude_rad"])
+    lon = np.degrees(truth["longitude_rad"])
+    ax.plot(lon, lat, "b-", lw=1.8, label="flown ground track (TRUTH)")
+    ax.plot(lon[0], lat[0], "go", ms=9, label="entry interface")
+    ax.plot(lon[-1], lat[-1], "ks", ms=7, label="end of run")
+    if "taem_lat_deg" in summary and "taem_lon_deg" in summary:
+        alat, alon = float(summary["taem_lat_deg"]), float(summary["taem_lon_deg"])
+        ax.plot(alon, alat, "r*", ms=14, label="TAEM aim point")
+        if "hac_radius_km" in summary:
+            r_m = float(summary["hac_radius_km"]) * 1e3
+            if "taem_heading_deg" in summary:
+                chi = math.radians(float(summary["taem_heading_deg"]))
+            else:
+                chi = float(truth["heading_rad"][-1])
+            clat, clon = destination(math.radians(alat), math.radians(alon), chi, r_m)
+            b = np.linspace(0.0, 2.0 * math.pi, 361)
+            hlat, hlon = destination(clat, clon, b, r_m)
+            ax.plot(np.degrees(hlon), np.degrees(hlat), "m--", lw=1.4,
+                    label=f"heading-alignment circle (r = {r_m / 1e3:.1f} km)")
+            ax.plot(math.degrees(clon), math.degrees(clat), "m+", ms=10, label="HAC centre")
+    style(ax, "longitude [deg]", "latitude [deg]", "Ground track")
+    ax.set_aspect(1.0 / max(math.cos(math.radians(float(np.nanmean(lat)))), 0.1), adjustable="datalim")
+    save(fig, out_dir, "ground_track.png", made)
+
+
+def plot_altitude_velocity(truth, summary, out_dir, made):
+    fig, ax = plt.subplots(figsize=(10, 7))
+    v = truth["velocity_mps"]
+    h = truth["altitude_m"]
+    ax.plot(v / 1e3, h / 1e3, "b-", lw=1.8, label="flown (TRUTH)")
+    corr = summary.get("corridor_hv")
+    if isinstance(corr, dict) and all(k in corr for k in ("velocity_mps", "altitude_low_m", "altitude_high_m")):
+        cv = np.asarray(corr["velocity_mps"], float) / 1e3
+        ax.fill_between(cv, np.asarray(corr["altitude_low_m"], float) / 1e3,
+                        np.asarray(corr["altitude_high_m"], float) / 1e3, color="orange", alpha=0.25,
+                        label="entry corridor")
+    else:
+        # Equilibrium glide (gamma' = 0, sigma = 0): k q = g - V^2/r with k = L/q estimated from the
+        # flown lift, exponential atmosphere for the altitude of the required density.
+        q = truth["q_Pa"]
+        ok = q > 50.0
+        if np.any(ok):
+            k = float(np.median(truth["lift_mps2"][ok] / q[ok]))
+            vg = np.linspace(max(300.0, float(np.nanmin(v))), float(np.nanmax(v)), 300)
+            r = EARTH_RADIUS_M + 60e3
+            need = MU_M3PS2 / r**2 - vg**2 / r
+            good = need > 0
+            rho = 2.0 * need[good] / (k * vg[good] ** 2)
+            h_eq = -SCALE_HEIGHT_M * np.log(rho / RHO0_KGPM3)
+            ax.plot(vg[good] / 1e3, h_eq / 1e3, "r--", lw=1.4,
+                    label=f"equilibrium glide, bank 0 (L/q = {k:.2e} m²/kg, exp. atmosphere)")
+        else:
+            warn("no dynamic pressure above 50 Pa: equilibrium-glide curve omitted")
+    style(ax, "Earth-relative velocity V [km/s]", "altitude h [km]", "Altitude - velocity")
+    save(fig, out_dir, "altitude_velocity.png", made)
+
+
+def plan_groups(points):
+    """Plan points split per plan sequence number, in order."""
+    out = []
+    for s in sorted(set(points["seq"].astype(int))):
+        m = points["seq"].astype(int) == s
+        out.append((s, {k: v[m] for k, v in points.items()}))
+    return out
+
+
+def plot_drag_energy(truth, points, summary, out_dir, made):
+    fig, ax = plt.subplots(figsize=(10, 7))
+    if points is not None:
+        groups = plan_groups(points)
+        cmap = plt.get_cmap("viridis", max(len(groups), 2))
+        for i, (s, p) in enumerate(groups):
+            # Up to 8 plans get a legend entry each; beyond that only the first and the last.
+            named = len(groups) <= 8 or i in (0, len(groups) - 1)
+            ax.plot(p["e_norm"], p["drag_mps2"], "-", lw=0.9, color=cmap(i),
+                    label=(f"plan {s}" if named else None))
+        if len(groups) > 8:
+            ax.plot([], [], "-", lw=0.9, color="grey", label=f"({len(groups)} plans, colour = sequence)")
+    else:
+        warn("no PLAN points: drag_energy.png shows the flown drag only")
+    corr = summary.get("corridor_drag")
+    if isinstance(corr, dict) and all(k in corr for k in ("e_norm", "drag_low_mps2", "drag_high_mps2")):
+        ce = np.asarray(corr["e_norm"], float)
+        ax.plot(ce, np.asarray(corr["drag_low_mps2"], float), "k--", lw=1.2, label="corridor lower bound")
+        ax.plot(ce, np.asarray(corr["drag_high_mps2"], float), "k-.", lw=1.2, label="corridor upper bound")
+    ax.plot(energy_norm(truth, summary), truth["drag_mps2"], "r-", lw=2.0, label="flown (TRUTH)")
+    ax.invert_xaxis()
+    style(ax, "normalised energy E / E_entry [-]", "drag acceleration D [m/s²]", "Drag - energy profile")
+    save(fig, out_dir, "drag_energy.png", made)
+
+
+def on_truth_energy(truth, summary, msg):
+    """Normalised energy at each message's tick, interpolated in time from TRUTH."""
+    e = energy_norm(truth, summary)
+    return np.interp(msg["utime"], truth["utime"], e)
+
+
+def plot_bank_alpha(truth, cmd, summary, out_dir, made):
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(10, 8), sharex=True)
+    e = energy_norm(truth, summary)
+    if cmd is not None:
+        ec = on_truth_energy(truth, summary, cmd)
+        a1.plot(ec, np.degrees(cmd["sigma_rad"]), "k-", lw=1.0, label="commanded σ (GUIDANCE_CMD)")
+        a2.plot(ec, np.degrees(cmd["alpha_rad"]), "k-", lw=1.0, label="commanded α (GUIDANCE_CMD)")
+    else:
+        warn("no GUIDANCE_CMD: bank_alpha.png shows the flown angles only")
+    a1.plot(e, np.degrees(truth["sigma_rad"]), "r--", lw=1.6, label="flown σ (TRUTH)")
+    a2.plot(e, np.degrees(truth["alpha_rad"]), "r--", lw=1.6, label="flown α (TRUTH)")
+    a1.invert_xaxis()
+    style(a1, "", "bank angle σ [deg]", "Bank angle and angle of attack")
+    style(a2, "normalised energy E / E_entry [-]", "angle of attack α [deg]")
+    save(fig, out_dir, "bank_alpha.png", made)
+
+
+def plot_gamma_energy(truth, points, summary, out_dir, made):
+    fig, ax = plt.subplots(figsize=(10, 7))
+    if points is not None:
+        s, p = plan_groups(points)[-1]
+        ax.plot(p["e_norm"], np.degrees(p["gamma_rad"]), "b-", lw=1.4, label=f"planned γ (latest plan, seq {s})")
+    else:
+        warn("no PLAN points: gamma_energy.png shows the flown flight-path angle only")
+    ax.plot(energy_norm(truth, summary), np.degrees(truth["gamma_rad"]), "r--", lw=1.6, label="flown γ (TRUTH)")
+    ax.invert_xaxis()
+    style(ax, "normalised energy E / E_entry [-]", "flight-path angle γ [deg]", "Flight-path angle - energy")
+    save(fig, out_dir, "gamma_energy.png", made)
+
+
+def plot_constraints(truth, summary, out_dir, made):
+    fig, axes = plt.subplots(3, 1, figsize=(10, 9), sharex=True)
+    t = truth["t_s"]
+    spec = [("heat_flux_Wpm2", 1e-3, "heat flux [kW/m²]", "limit_heat_flux_kW_m2"),
+            ("load_factor_g", 1.0, "load factor [g]", "limit_g"),
+            ("q_Pa", 1e-3, "dynamic pressure [kPa]", "limit_q_kPa")]
+    for ax, (col, scale, label, key) in zip(axes, spec):
+        ax.plot(t, truth[col] * scale, "b-", lw=1.5, label="flown (TRUTH)")
+        if key in summary:
+            ax.axhline(float(summary[key]), color="r", ls="--", lw=1.3, label=f"limit {float(summary[key]):g}")
+        style(ax, "time t [s]" if ax is axes[-1] else "", label)
+    axes[0].set_title("Path constraints")
+    save(fig, out_dir, "constraints_time.png", made)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run_dir")
+    ap.add_argument("--log", help="log file (default RUN_DIR/run.lcm)")
+    ap.add_argument("--csv", help="CSV folder (default RUN_DIR/run_csv)")
+    ap.add_argument("--out", help="plot folder (default RUN_DIR/plots)")
+    args = ap.parse_args()
+    run_dir = args.run_dir
+    csv_dir = args.csv or os.path.join(run_dir, "run_csv")
+    out_dir = args.out or os.path.join(run_dir, "plots")
+    if not os.path.isdir(csv_dir):
+        log = args.log or os.path.join(run_dir, "run.lcm")
+        if not os.path.isfile(log):
+            print(f"plot_run: error: neither {csv_dir} nor {log} exists", file=sys.stderr)
+            return 2
+        log2csv = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "log2csv")
+        rc = subprocess.call([log2csv, log, "--out", csv_dir])
+        if rc != 0:
+            print(f"plot_run: error: log2csv failed with status {rc}", file=sys.stderr)
+            if not os.path.isdir(csv_dir):
+                return 2
+    summary = {}
+    spath = os.path.join(run_dir, "summary.json")
+    if os.path.isfile(spath):
+        try:
+            with open(spath, encoding="utf-8") as f:
+                summary = json.load(f)
+        except (OSError, ValueError) as exc:
+            warn(f"cannot read {spath}: {exc}")
+        if not isinstance(summary, dict):
+            summary = {}
+    truth = read_csv(os.path.join(csv_dir, "TRUTH.csv"))
+    cmd = read_csv(os.path.join(csv_dir, "GUIDANCE_CMD.csv"))
+    points = read_csv(os.path.join(csv_dir, "PLAN_points.csv"))
+    os.makedirs(out_dir, exist_ok=True)
+    made = []
+    jobs = [("ground_track", lambda: plot_ground_track(truth, summary, out_dir, made)),
+            ("altitude_velocity", lambda: plot_altitude_velocity(truth, summary, out_dir, made)),
+            ("drag_energy", lambda: plot_drag_energy(truth, points, summary, out_dir, made)),
+            ("bank_alpha", lambda: plot_bank_alpha(truth, cmd, summary, out_dir, made)),
+            ("gamma_energy", lambda: plot_gamma_energy(truth, points, summary, out_dir, made)),
+            ("constraints_time", lambda: plot_constraints(truth, summary, out_dir, made))]
+    for name, job in jobs:
+        if truth is None:
+            warn(f"no TRUTH channel in {csv_dir}: {name}.png skipped")
+            continue
+        try:
+            job()
+        except KeyError as exc:
+            warn(f"{name}.png skipped: column {exc} missing")
+            plt.close("all")
+    if not made:
+        print("plot_run: error: no plot could be made", file=sys.stderr)
+        return 1
+    print(f"plot_run: {len(made)} plot(s) in {out_dir}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
