@@ -1,0 +1,20 @@
+// Heat flux and load factor (thesis 3.2).
+#pragma once
+
+namespace reentry::truth {
+
+inline constexpr double kChapmanC1_Wpm1p5 = 1.06584e8;  // c1 in W/m^(3/2) ... (3.5)
+inline constexpr double kChapmanC2 = 3.0;
+inline constexpr double kChapmanRho0_kgpm3 = 1.225;
+inline constexpr double kStandardGravity_mps2 = 9.80665;
+
+/// Circular velocity at the equatorial surface, Vc = sqrt(mu / R_eq) ~ 7905.4 m/s (3.5).
+double chapman_circular_velocity_mps();
+
+/// Stagnation-point heat flux (3.5): q = c1 / sqrt(Rn) * sqrt(rho / rho0) * (V / Vc)^c2.
+double chapman_heat_flux_Wpm2(double density_kgpm3, double velocity_mps, double nose_radius_m);
+
+/// Body-normal load factor (3.7): n = (L cos a + D sin a) / (m g0), in g.
+double body_normal_load_factor(double lift_N, double drag_N, double alpha_rad, double mass_kg);
+
+}  // namespace reentry::truth
