@@ -1,0 +1,244 @@
+#include "models/onboard_models.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include <reentry/config/mission.hpp>
+
+#include "numerics/table_lookup.hpp"
+
+namespace reentry::fsw {
+namespace {
+
+constexpr double kGammaAir = 1.4;
+constexpr double kGasConstantAir = 287.05287;
+
+// US 1976 temperature layers (geometric altitude approximation), used for the speed of
+// sound when the exponential density model is selected.
+double us76_temperature_K(double altitude_m) {
+  static constexpr double kBase_m[] = {0.0, 11000.0, 20000.0, 32000.0, 47000.0, 51000.0, 71000.0, 84852.0};
+  static constexpr double kBaseT_K[] = {288.15, 216.65, 216.65, 228.65, 270.65, 270.65, 214.65, 186.946};
+  static constexpr double kLapse_Kpm[] = {-6.5e-3, 0.0, 1.0e-3, 2.8e-3, 0.0, -2.8e-3, -2.0e-3, 0.0};
+  const double h = altitude_m < 0.0 ? 0.0 : altitude_m;
+  int layer = 0;
+  for (int i = 0; i < 8; ++i) {
+    if (h >= kBase_m[i]) layer = i;
+  }
+  return kBaseT_K[layer] + kLapse_Kpm[layer] * (h - kBase_m[layer]);
+}
+
+bool strictly_increasing(const double* x, int n) {
+  for (int i = 1; i < n; ++i) {
+    if (!(x[i] > x[i - 1])) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+double gravity_mps2(double radius_m) { return kMuEarth_m3ps2 / (radius_m * radius_m); }
+
+double specific_energy_Jpkg(double radius_m, double velocity_mps) {
+  return 0.5 * velocity_mps * velocity_mps - kMuEarth_m3ps2 / radius_m + kMuEarth_m3ps2 / kEarthRadius_m;  // (7.8)
+}
+
+double velocity_from_energy_mps(double energy_Jpkg, double radius_m) {
+  const double v2 = 2.0 * (energy_Jpkg + kMuEarth_m3ps2 / radius_m - kMuEarth_m3ps2 / kEarthRadius_m);
+  if (!(v2 >= 0.0)) return -1.0;
+  return std::sqrt(v2);
+}
+
+double radius_for_speed_m(double energy_Jpkg, double velocity_mps) {
+  // mu/r = mu/R - E + V^2/2
+  const double mu_over_r = kMuEarth_m3ps2 / kEarthRadius_m - energy_Jpkg + 0.5 * velocity_mps * velocity_mps;
+  if (!(mu_over_r > 0.0)) return -1.0;
+  return kMuEarth_m3ps2 / mu_over_r;
+}
+
+// ---------------------------------------------------------------- atmosphere
+Status OnboardAtmosphere::init_exponential() {
+  kind_ = AtmosphereKind::kExponential;
+  n_ = 0;
+  return Status::kOk;
+}
+
+Status OnboardAtmosphere::init_table(const char* path) {
+  std::FILE* f = std::fopen(path, "r");
+  if (f == nullptr) return Status::kInvalidInput;
+  char line[256];
+  int n = 0;
+  Status status = Status::kOk;
+  for (int guard = 0; guard < 100000 && std::fgets(line, sizeof line, f) != nullptr; ++guard) {
+    if (line[0] == '%' || line[0] == '#') continue;
+    double h = 0.0, rho = 0.0, p = 0.0, t = 0.0;
+    if (std::sscanf(line, "%lf %lf %lf %lf", &h, &rho, &p, &t) != 4) continue;
+    if (n >= kCapacity) { status = Status::kCapacityExceeded; break; }
+    if (!(rho > 0.0) || !(t > 0.0) || (n > 0 && !(h > h_m_[n - 1]))) { status = Status::kInvalidInput; break; }
+    h_m_[n] = h;
+    ln_rho_[n] = std::log(rho);
+    temperature_K_[n] = t;
+    ++n;
+  }
+  std::fclose(f);
+  if (status != Status::kOk) return status;
+  if (n < 2) return Status::kInvalidInput;
+  n_ = n;
+  kind_ = AtmosphereKind::kTable;
+  return Status::kOk;
+}
+
+int OnboardAtmosphere::segment(double altitude_m) const { return numerics::bracket_index(h_m_, n_, altitude_m); }
+
+double OnboardAtmosphere::density_kgpm3(double altitude_m) const {
+  if (kind_ == AtmosphereKind::kExponential) return kRho0_kgpm3 * std::exp(-kBeta_pm * altitude_m);
+  const int j = segment(altitude_m);
+  const double slope = (ln_rho_[j + 1] - ln_rho_[j]) / (h_m_[j + 1] - h_m_[j]);
+  return std::exp(ln_rho_[j] + slope * (altitude_m - h_m_[j]));  // linear extrapolation of ln rho outside
+}
+
+double OnboardAtmosphere::dlnrho_dr_pm(double altitude_m) const {
+  if (kind_ == AtmosphereKind::kExponential) return -kBeta_pm;  // (7.16)
+  const int j = segment(altitude_m);
+  return (ln_rho_[j + 1] - ln_rho_[j]) / (h_m_[j + 1] - h_m_[j]);
+}
+
+double OnboardAtmosphere::speed_of_sound_mps(double altitude_m) const {
+  double t_K = 0.0;
+  if (kind_ == AtmosphereKind::kExponential) {
+    t_K = us76_temperature_K(altitude_m);
+  } else {
+    const int j = segment(altitude_m);
+    double w = (altitude_m - h_m_[j]) / (h_m_[j + 1] - h_m_[j]);
+    w = w < 0.0 ? 0.0 : (w > 1.0 ? 1.0 : w);
+    t_K = temperature_K_[j] + w * (temperature_K_[j + 1] - temperature_K_[j]);
+  }
+  return std::sqrt(kGammaAir * kGasConstantAir * t_K);
+}
+
+// ---------------------------------------------------------------- aero
+Status OnboardAero::init(const double* alpha_rad, int n_alpha, const double* mach, int n_mach,
+                         const double* cl, const double* cd) {
+  if (n_alpha < 2 || n_mach < 1 || n_alpha > kMaxAlpha || n_mach > kMaxMach) return Status::kCapacityExceeded;
+  if (!strictly_increasing(alpha_rad, n_alpha) || !strictly_increasing(mach, n_mach)) return Status::kInvalidInput;
+  for (int i = 0; i < n_alpha * n_mach; ++i) {
+    if (!std::isfinite(cl[i]) || !std::isfinite(cd[i]) || !(cd[i] > 0.0)) return Status::kInvalidInput;
+  }
+  n_alpha_ = n_alpha;
+  n_mach_ = n_mach;
+  std::memcpy(alpha_rad_, alpha_rad, sizeof(double) * static_cast<unsigned>(n_alpha));
+  std::memcpy(mach_, mach, sizeof(double) * static_cast<unsigned>(n_mach));
+  std::memcpy(cl_, cl, sizeof(double) * static_cast<unsigned>(n_alpha * n_mach));
+  std::memcpy(cd_, cd, sizeof(double) * static_cast<unsigned>(n_alpha * n_mach));
+  return Status::kOk;
+}
+
+Status OnboardAero::init(const config::AeroModel& aero) {
+  const int na = static_cast<int>(aero.cl.alpha_rad.size());
+  const int nm = static_cast<int>(aero.cl.mach.size());
+  if (aero.cd.alpha_rad != aero.cl.alpha_rad || aero.cd.mach != aero.cl.mach) return Status::kInvalidInput;
+  if (static_cast<int>(aero.cl.values.size()) != na * nm || static_cast<int>(aero.cd.values.size()) != na * nm) {
+    return Status::kInvalidInput;
+  }
+  return init(aero.cl.alpha_rad.data(), na, aero.cl.mach.data(), nm, aero.cl.values.data(), aero.cd.values.data());
+}
+
+double OnboardAero::interpolate(const double* table, double alpha_rad, double mach) const {
+  return numerics::bilinear(alpha_rad_, n_alpha_, mach_, n_mach_, table, alpha_rad, mach);  // clamped at the edges
+}
+
+void OnboardAero::coefficients(double alpha_rad, double mach, double& cl, double& cd) const {
+  cl = interpolate(cl_, alpha_rad, mach);
+  cd = interpolate(cd_, alpha_rad, mach);
+}
+double OnboardAero::cl(double alpha_rad, double mach) const { return interpolate(cl_, alpha_rad, mach); }
+double OnboardAero::cd(double alpha_rad, double mach) const { return interpolate(cd_, alpha_rad, mach); }
+
+// ---------------------------------------------------------------- alpha profile
+Status AlphaProfile::init(const double* e_norm, const double* alpha_rad, int n) {
+  if (n < 1 || n > kCapacity) return Status::kCapacityExceeded;
+  if (!strictly_increasing(e_norm, n)) return Status::kInvalidInput;
+  for (int i = 0; i < n; ++i) {
+    if (!std::isfinite(alpha_rad[i])) return Status::kInvalidInput;
+    x_[i] = e_norm[i];
+    alpha_rad_[i] = alpha_rad[i];
+  }
+  n_ = n;
+  return Status::kOk;
+}
+
+Status AlphaProfile::init(const config::Table1D& profile) {
+  if (profile.x.size() != profile.y.size()) return Status::kInvalidInput;
+  return init(profile.x.data(), profile.y.data(), static_cast<int>(profile.x.size()));
+}
+
+double AlphaProfile::alpha_rad(double e_norm) const {
+  return numerics::linear(x_, alpha_rad_, n_, e_norm);  // clamped
+}
+
+// ---------------------------------------------------------------- aggregate
+void OnboardModels::set_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m) {
+  mass_kg_ = mass_kg;
+  area_over_mass_m2pkg_ = reference_area_m2 / mass_kg;
+  nose_radius_m_ = nose_radius_m;
+  // C of (3.6) from (3.5): c1 / (sqrt(RN) sqrt(rho0) Vc^c2), Vc = sqrt(mu / R).
+  const double vc = std::sqrt(kMuEarth_m3ps2 / kEarthRadius_m);
+  heat_constant_ = kHeatC1 / (std::sqrt(nose_radius_m_) * std::sqrt(OnboardAtmosphere::kRho0_kgpm3) * std::pow(vc, kHeatC2));
+}
+
+Status OnboardModels::init(const config::Mission& mission) {
+  const config::Vehicle& v = mission.vehicle;
+  if (!(v.mass_kg > 0.0) || !(v.reference_area_m2 > 0.0) || !(v.nose_radius_m > 0.0)) return Status::kInvalidInput;
+  set_vehicle(v.mass_kg, v.reference_area_m2, v.nose_radius_m);
+  Status s = aero_.init(v.aero);
+  if (s != Status::kOk) return s;
+  if (mission.guidance.onboard_atmosphere == "table") {
+    std::string path = mission.environment.us76_table;
+    if (!path.empty() && path[0] != '/' && !mission.source_file.empty()) {
+      const auto slash = mission.source_file.find_last_of('/');
+      if (slash != std::string::npos) path = mission.source_file.substr(0, slash + 1) + path;
+    }
+    return atmosphere_.init_table(path.c_str());
+  }
+  return atmosphere_.init_exponential();
+}
+
+double OnboardModels::mach(double altitude_m, double velocity_mps) const {
+  return velocity_mps / atmosphere_.speed_of_sound_mps(altitude_m);
+}
+
+double OnboardModels::drag_mps2(double alpha_rad, double altitude_m, double velocity_mps) const {
+  const double rho = atmosphere_.density_kgpm3(altitude_m);
+  const double cd = aero_.cd(alpha_rad, mach(altitude_m, velocity_mps));
+  return 0.5 * rho * velocity_mps * velocity_mps * cd * area_over_mass_m2pkg_;  // (D.1)
+}
+
+double OnboardModels::lift_mps2(double alpha_rad, double altitude_m, double velocity_mps) const {
+  const double rho = atmosphere_.density_kgpm3(altitude_m);
+  const double cl = aero_.cl(alpha_rad, mach(altitude_m, velocity_mps));
+  return 0.5 * rho * velocity_mps * velocity_mps * cl * area_over_mass_m2pkg_;
+}
+
+double OnboardModels::drag_coefficient(double alpha_rad, double energy_Jpkg, double altitude_m) const {
+  const double v = velocity_from_energy_mps(energy_Jpkg, kEarthRadius_m + altitude_m);
+  return aero_.cd(alpha_rad, mach(altitude_m, v < 0.0 ? 0.0 : v));
+}
+
+double OnboardModels::drag_coefficient_slope(double alpha_a_rad, double energy_a_Jpkg, double altitude_a_m,
+                                             double alpha_b_rad, double energy_b_Jpkg, double altitude_b_m) const {
+  if (energy_a_Jpkg == energy_b_Jpkg) return 0.0;
+  return (drag_coefficient(alpha_b_rad, energy_b_Jpkg, altitude_b_m) - drag_coefficient(alpha_a_rad, energy_a_Jpkg, altitude_a_m)) /
+         (energy_b_Jpkg - energy_a_Jpkg);
+}
+
+double OnboardModels::dlnrho_dr_fd(double altitude_m, double step_m) const {
+  return (std::log(atmosphere_.density_kgpm3(altitude_m + step_m)) - std::log(atmosphere_.density_kgpm3(altitude_m - step_m))) /
+         (2.0 * step_m);
+}
+
+double OnboardModels::heat_flux_Wpm2(double density_kgpm3, double velocity_mps) const {
+  return heat_constant_ * std::sqrt(density_kgpm3) * std::pow(velocity_mps, kHeatC2);  // (3.6)
+}
+
+}  // namespace reentry::fsw

@@ -1,0 +1,145 @@
+// On-board environment and vehicle models used by the planner and the tracker.
+//
+// Simpler than the truth models on purpose (DESIGN §5): central gravity, exponential or
+// tabulated atmosphere, the vehicle's basic aero tables. All data is copied into
+// fixed-capacity arrays by init(); after that nothing allocates and nothing does I/O.
+// Independent code from sim_truth.
+#pragma once
+
+#include "guidance_types.hpp"
+
+namespace reentry::config {
+struct Mission;
+struct AeroModel;
+struct Table1D;
+}  // namespace reentry::config
+
+namespace reentry::fsw {
+
+inline constexpr double kMuEarth_m3ps2 = 3.986004418e14;
+inline constexpr double kEarthRadius_m = 6378137.0;        // R_eq, reference radius of (7.8)
+inline constexpr double kEarthRate_radps = 7.292115e-5;
+inline constexpr double kG0_mps2 = 9.80665;
+
+/// Central gravity g = mu / r^2.
+double gravity_mps2(double radius_m);
+
+/// Specific energy E = V^2/2 - mu/r + mu/R (7.8), R = R_eq.
+double specific_energy_Jpkg(double radius_m, double velocity_mps);
+
+/// V from (E, r) through (7.8); returns a negative value when the energy is too low
+/// for the radius (V^2 < 0), so callers can detect an impossible point.
+double velocity_from_energy_mps(double energy_Jpkg, double radius_m);
+
+/// Radius at which (7.8) gives the speed velocity_mps for the energy (V^2 >= 0 above it fails).
+double radius_for_speed_m(double energy_Jpkg, double velocity_mps);
+
+enum class AtmosphereKind { kExponential, kTable };
+
+/// rho(h), d(ln rho)/dr and speed of sound. Exponential: rho0 = 1.225, beta = 1/7050 (7.15);
+/// table: ln(rho) and T linear in altitude between rows of a US76 file read at init.
+class OnboardAtmosphere {
+ public:
+  static constexpr int kCapacity = 2048;
+  static constexpr double kRho0_kgpm3 = 1.225;
+  static constexpr double kBeta_pm = 1.0 / 7050.0;
+
+  Status init_exponential();
+  /// Reads "altitude_m density pressure temperature" rows ('%' comments). I/O at init only.
+  Status init_table(const char* path);
+
+  double density_kgpm3(double altitude_m) const;
+  double dlnrho_dr_pm(double altitude_m) const;   // (1/rho) d rho / dr
+  double speed_of_sound_mps(double altitude_m) const;
+  AtmosphereKind kind() const { return kind_; }
+  int size() const { return n_; }
+
+ private:
+  int segment(double altitude_m) const;
+  AtmosphereKind kind_ = AtmosphereKind::kExponential;
+  int n_ = 0;
+  double h_m_[kCapacity] = {};
+  double ln_rho_[kCapacity] = {};
+  double temperature_K_[kCapacity] = {};
+};
+
+/// Basic (untrimmed) CL and CD over (alpha, Mach), bilinear, clamped at the table edges.
+class OnboardAero {
+ public:
+  static constexpr int kMaxAlpha = 64;
+  static constexpr int kMaxMach = 64;
+
+  Status init(const config::AeroModel& aero);
+  /// Direct initialisation from arrays (row-major, values[i_alpha * n_mach + i_mach]).
+  Status init(const double* alpha_rad, int n_alpha, const double* mach, int n_mach,
+              const double* cl, const double* cd);
+  void coefficients(double alpha_rad, double mach, double& cl, double& cd) const;
+  double cl(double alpha_rad, double mach) const;
+  double cd(double alpha_rad, double mach) const;
+
+ private:
+  double interpolate(const double* table, double alpha_rad, double mach) const;
+  int n_alpha_ = 0;
+  int n_mach_ = 0;
+  double alpha_rad_[kMaxAlpha] = {};
+  double mach_[kMaxMach] = {};
+  double cl_[kMaxAlpha * kMaxMach] = {};
+  double cd_[kMaxAlpha * kMaxMach] = {};
+};
+
+/// alpha over normalised energy E / E_entry, linear, clamped (mission.alpha_profile).
+class AlphaProfile {
+ public:
+  static constexpr int kCapacity = 64;
+  Status init(const config::Table1D& profile);
+  Status init(const double* e_norm, const double* alpha_rad, int n);
+  double alpha_rad(double e_norm) const;
+
+ private:
+  int n_ = 0;
+  double x_[kCapacity] = {};
+  double alpha_rad_[kCapacity] = {};
+};
+
+/// Everything the planner needs about the vehicle and its environment.
+class OnboardModels {
+ public:
+  Status init(const config::Mission& mission);
+
+  const OnboardAtmosphere& atmosphere() const { return atmosphere_; }
+  const OnboardAero& aero() const { return aero_; }
+  OnboardAtmosphere& atmosphere() { return atmosphere_; }
+  OnboardAero& aero() { return aero_; }
+
+  void set_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m);
+  double mass_kg() const { return mass_kg_; }
+  double area_over_mass() const { return area_over_mass_m2pkg_; }
+
+  double mach(double altitude_m, double velocity_mps) const;
+  /// Drag acceleration D = rho V^2 CD S / (2 m)  (D.1).
+  double drag_mps2(double alpha_rad, double altitude_m, double velocity_mps) const;
+  double lift_mps2(double alpha_rad, double altitude_m, double velocity_mps) const;
+  /// C_D at (alpha, E, h): V from (7.8), Mach from the on-board speed of sound (7.9).
+  double drag_coefficient(double alpha_rad, double energy_Jpkg, double altitude_m) const;
+  /// dC_D/dE between two points of an (alpha(E), h(E)) path, central difference (7.14).
+  double drag_coefficient_slope(double alpha_a_rad, double energy_a_Jpkg, double altitude_a_m, double alpha_b_rad,
+                                double energy_b_Jpkg, double altitude_b_m) const;
+  /// (1/rho) d rho / dr by a central difference of ln rho over +-step_m (7.14-7.16).
+  double dlnrho_dr_fd(double altitude_m, double step_m) const;
+  /// Convective stagnation heat flux (3.5): c1/sqrt(RN) sqrt(rho/rho0) (V/Vc)^c2.
+  double heat_flux_Wpm2(double density_kgpm3, double velocity_mps) const;
+  /// C of (3.6): q = C sqrt(rho) V^c2.
+  double heat_flux_constant() const { return heat_constant_; }
+  static constexpr double kHeatC1 = 1.06584e8;
+  static constexpr double kHeatC2 = 3.0;
+
+ private:
+  OnboardAtmosphere atmosphere_;
+  OnboardAero aero_;
+  double mass_kg_ = 1.0;
+  double area_over_mass_m2pkg_ = 0.0;
+  double nose_radius_m_ = 1.0;
+  double heat_constant_ = 0.0;
+};
+
+}  // namespace reentry::fsw

@@ -1,0 +1,593 @@
+#include "planner/entry_planner.hpp"
+
+#include <cmath>
+
+#include <reentry/config/mission.hpp>
+
+#include "planner/bracketed_root.hpp"
+#include "planner/drag_derivatives.hpp"
+#include "planner/mission_geometry.hpp"
+
+namespace reentry::fsw {
+namespace {
+
+constexpr double kMaxAltitude_m = 200000.0;
+constexpr double kDragFloor_mps2 = 1e-4;
+constexpr double kGradedGridDrag_mps2 = 0.1;
+constexpr double kMaxClosedFraction = 0.1;  // below this initial drag the energy grid is graded
+constexpr double kDensityStep_m = 25.0;    // finite-difference step for d ln rho / dr
+constexpr int kRootIterations = 80;
+
+bool finite_state(const RelativeState& s) {
+  return std::isfinite(s.radius_m) && std::isfinite(s.latitude_rad) && std::isfinite(s.longitude_rad) &&
+         std::isfinite(s.velocity_mps) && std::isfinite(s.heading_rad) && std::isfinite(s.energy_Jpkg) &&
+         std::isfinite(s.drag_mps2);
+}
+
+double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
+
+}  // namespace
+
+Status EntryPlanner::init(const config::Mission& mission) {
+  initialised_ = false;
+  Status s = models_.init(mission);
+  if (s != Status::kOk) return s;
+  s = alpha_profile_.init(mission.alpha_profile);
+  if (s != Status::kOk) return s;
+  const config::GuidanceParams& g = mission.guidance;
+  if (g.drag_profile == "three_segment") profile_kind_ = DragProfileKind::kThreeSegment;
+  else if (g.drag_profile == "smooth") profile_kind_ = DragProfileKind::kSmooth;
+  else return Status::kInvalidInput;
+  if (g.initial_drag == "actual") initial_drag_ = InitialDrag::kActual;
+  else if (g.initial_drag == "lmin") initial_drag_ = InitialDrag::kLmin;
+  else return Status::kInvalidInput;
+  if (g.rk4_steps < 10 || g.rk4_steps > kMaxRkSteps || g.max_length_iterations < 1 || g.max_length_iterations > 1000 ||
+      !(g.downrange_tol_m > 0.0) || !(g.crossrange_tol_m > 0.0)) {
+    return Status::kInvalidInput;
+  }
+  rk4_steps_ = g.rk4_steps;
+  max_iterations_ = g.max_length_iterations;
+  downrange_tol_m_ = g.downrange_tol_m;
+  crossrange_tol_m_ = g.crossrange_tol_m;
+
+  const config::PathConstraints& c = mission.constraints;
+  heat_max_ = c.heat_flux_max_Wpm2;
+  q_alpha_max_ = c.q_alpha_max_Pa_rad;
+  n_max_ = c.load_factor_max_g * kG0_mps2;
+  q_max_ = c.dynamic_pressure_max_Pa;
+  sigma_rate_max_ = c.sigma_rate_max_radps;
+  if (!(sigma_rate_max_ > 0.0)) return Status::kInvalidInput;
+
+  const config::SphericalState& e = mission.entry;
+  entry_ = RelativeState{};
+  entry_.radius_m = kEarthRadius_m + e.altitude_m;
+  entry_.altitude_m = e.altitude_m;
+  entry_.longitude_rad = e.longitude_rad;
+  entry_.latitude_rad = e.latitude_rad;
+  entry_.velocity_mps = e.velocity_mps;
+  entry_.flight_path_rad = e.flight_path_rad;
+  entry_.heading_rad = e.heading_rad;
+  entry_.energy_Jpkg = specific_energy_Jpkg(entry_.radius_m, e.velocity_mps);  // (7.8)
+  entry_energy_ = entry_.energy_Jpkg;
+  const double alpha_entry = alpha_profile_.alpha_rad(1.0);
+  entry_.drag_mps2 = models_.drag_mps2(alpha_entry, e.altitude_m, e.velocity_mps);
+  entry_.lift_mps2 = models_.lift_mps2(alpha_entry, e.altitude_m, e.velocity_mps);
+
+  const config::TaemInterface& t = mission.taem;
+  taem_radius_ = kEarthRadius_m + t.altitude_m;
+  taem_velocity_ = t.velocity_mps;
+  taem_lat_ = t.latitude_rad;
+  taem_lon_ = t.longitude_rad;
+  taem_energy_ = specific_energy_Jpkg(taem_radius_, taem_velocity_);
+  if (!(entry_energy_ > taem_energy_) || !(taem_energy_ > 0.0) || !std::isfinite(entry_.drag_mps2)) {
+    return Status::kInvalidInput;
+  }
+  initialised_ = true;
+  return Status::kOk;
+}
+
+RelativeState EntryPlanner::entry_state() const { return entry_; }
+
+// ------------------------------------------------------------------ corridor
+// Energy grid from the planning energy to TAEM. When the profile starts from a near-zero
+// drag (actual drag at the entry interface) the range flown per unit energy is huge at the
+// start (S = -int dE / D), so the grid is graded quadratically towards the planning energy.
+Status EntryPlanner::build_grid(double e0, bool graded) {
+  e0_ = e0;
+  const double span = e0 - taem_energy_;
+  for (int k = 0; k < kGrid; ++k) {
+    const double u = static_cast<double>(k) / (kGrid - 1);
+    e_[k] = e0 - span * (graded ? u * u : u);
+    alpha_[k] = alpha_profile_.alpha_rad(e_[k] / entry_energy_);
+  }
+  e_[kGrid - 1] = taem_energy_;
+  return Status::kOk;
+}
+
+Status EntryPlanner::equilibrium_glide_radius() {
+  // Initial h(E): zero-bank equilibrium glide L = g - V^2 / r (2.50), one root per energy.
+  for (int k = 0; k < kGrid; ++k) {
+    const double energy = e_[k];
+    const double alpha = alpha_[k];
+    const double r_top = radius_for_speed_m(energy, 50.0);
+    const double h_top = clamp(r_top - kEarthRadius_m, 0.0, kMaxAltitude_m);
+    if (!(h_top > 1000.0)) return Status::kExtractionFailed;
+    auto residual = [&](double h) {
+      const double r = kEarthRadius_m + h;
+      const double v = velocity_from_energy_mps(energy, r);
+      return models_.lift_mps2(alpha, h, v) - (gravity_mps2(r) - v * v / r);
+    };
+    const BracketedRoot root = brent_root(residual, 0.0, h_top, 1.0, 0.0, kRootIterations);
+    if (root.status == Status::kOk || root.status == Status::kMaxIterations) {
+      r_[k] = kEarthRadius_m + root.x;
+    } else if (root.status == Status::kNoBracket && residual(h_top) > 0.0) {
+      r_[k] = kEarthRadius_m + h_top;  // lift exceeds the need everywhere: highest admissible point
+    } else {
+      return root.status == Status::kNoBracket ? Status::kExtractionFailed : root.status;
+    }
+  }
+  return Status::kOk;
+}
+
+void EntryPlanner::corridor() {
+  const double s_over_m = models_.area_over_mass();
+  const double c_heat = models_.heat_flux_constant();
+  const double two_c2m2 = 2.0 * (OnboardModels::kHeatC2 - 1.0);
+  for (int k = 0; k < kGrid; ++k) {
+    const double r = r_[k];
+    const double h = r - kEarthRadius_m;
+    const double v = velocity_from_energy_mps(e_[k], r);
+    const double g = gravity_mps2(r);
+    double cl, cd;
+    models_.aero().coefficients(alpha_[k], models_.mach(h, v), cl, cd);
+    const double alpha = alpha_[k];
+    d_heat_[k] = (heat_max_ * heat_max_ * cd * s_over_m) / (2.0 * c_heat * c_heat * std::pow(v, two_c2m2));  // (7.3)
+    d_qalpha_[k] = alpha > 1e-6 ? q_alpha_max_ * cd * s_over_m / alpha : config::kNotConstrained;         // (7.4)
+    const double d_load = n_max_ / (cl / cd * std::cos(alpha) + std::sin(alpha));                           // (7.5)
+    const double d_q = q_max_ * cd * s_over_m;                                                               // (7.6)
+    double dmax = d_heat_[k];
+    if (d_qalpha_[k] < dmax) dmax = d_qalpha_[k];
+    if (d_load > 0.0 && d_load < dmax) dmax = d_load;
+    if (d_q < dmax) dmax = d_q;
+    d_max_[k] = dmax;
+    d_min_[k] = (g - v * v / r) * cd / cl;                                                                  // (7.7)
+  }
+}
+
+void EntryPlanner::breakpoints() {
+  const double span = e0_ - taem_energy_;
+  // E1: heat-flux / q-alpha intersection (first crossing from the planning energy down).
+  double e1 = e0_ - 0.3 * span;
+  bool found = false;
+  for (int k = 0; k + 1 < kGrid && !found; ++k) {
+    const double f0 = d_heat_[k] - d_qalpha_[k];
+    const double f1 = d_heat_[k + 1] - d_qalpha_[k + 1];
+    if (std::isfinite(f0) && std::isfinite(f1) && f0 < 0.0 && f1 >= 0.0) {
+      e1 = e_[k] + (e_[k + 1] - e_[k]) * (f0 / (f0 - f1));
+      found = true;
+    }
+  }
+  e1 = clamp(e1, taem_energy_ + 0.1 * span, e0_ - 0.02 * span);
+  // E2: energy of the (highest) maximum of Lmin below E1.
+  double best = -1.0;
+  double e2 = taem_energy_ + 0.05 * span;
+  for (int k = 0; k < kGrid; ++k) {
+    if (e_[k] < e1 && d_min_[k] > best) { best = d_min_[k]; e2 = e_[k]; }
+  }
+  e2 = clamp(e2, taem_energy_ + 0.02 * span, e1 - 0.02 * span);
+  diag_.e1_Jpkg = e1;
+  diag_.e2_Jpkg = e2;
+}
+
+// ------------------------------------------------------------------ drag profile
+Status EntryPlanner::fit_profile(double s_m) {
+  Status s;
+  if (profile_kind_ == DragProfileKind::kThreeSegment) {
+    three_ = ThreeSegmentProfile{e0_, diag_.e1_Jpkg, diag_.e2_Jpkg, taem_energy_, diag_.di_mps2, 1.0, diag_.df_mps2};
+    s = three_.solve_constant_drag(s_m, 1e-3, 500.0);   // (7.12)
+    diag_.dc_mps2 = three_.d_c;
+  } else {
+    smooth_ = SmoothProfile{e0_, taem_energy_, diag_.di_mps2, 1.0, diag_.df_mps2};
+    s = smooth_.solve_level(s_m, 1e-3, 500.0);
+    diag_.dc_mps2 = smooth_.d_c;
+  }
+  if (s == Status::kNoBracket) return Status::kCorridorClosed;  // no level reaches the length
+  if (s != Status::kOk) return s;
+  int clipped = 0;
+  for (int k = 0; k < kGrid; ++k) {
+    if (profile_kind_ == DragProfileKind::kThreeSegment) {
+      d_[k] = three_.drag(e_[k]);
+      dp_[k] = three_.slope(e_[k]);
+      dpp_[k] = 0.0;  // linear segments
+    } else {
+      d_[k] = smooth_.drag(e_[k]);
+      dp_[k] = smooth_.slope(e_[k]);
+      dpp_[k] = smooth_.curvature(e_[k]);
+    }
+  }
+  // Where the profile violates the active maximum constraint, follow the constraint (§7.2).
+  for (int k = 0; k < kGrid; ++k) {
+    if (d_[k] > d_max_[k]) {
+      ++clipped;
+      d_[k] = d_max_[k];
+      const int km = k > 0 ? k - 1 : 0;
+      const int kp = k + 1 < kGrid ? k + 1 : kGrid - 1;
+      dp_[k] = (d_max_[kp] - d_max_[km]) / (e_[kp] - e_[km]);
+      if (k > 0 && k + 1 < kGrid) {  // second difference on the (possibly graded) grid
+        const double h1 = e_[k] - e_[km], h2 = e_[kp] - e_[k];
+        dpp_[k] = 2.0 * (h1 * d_max_[kp] - (h1 + h2) * d_max_[k] + h2 * d_max_[km]) / (h1 * h2 * (h1 + h2));
+      } else {
+        dpp_[k] = 0.0;
+      }
+    }
+    if (!std::isfinite(d_[k] + dp_[k] + dpp_[k])) return Status::kNonFinite;
+  }
+  diag_.clipped_points = clipped;
+  return Status::kOk;
+}
+
+// ------------------------------------------------------------------ extraction
+Status EntryPlanner::extract() {
+  for (int k = 0; k < kGrid; ++k) {
+    const double energy = e_[k];
+    const double alpha = alpha_[k];
+    const double drag = d_[k];
+    const double h_top = clamp(radius_for_speed_m(energy, 1.0) - kEarthRadius_m, 0.0, kMaxAltitude_m);
+    auto residual = [&](double h) {  // (7.13)
+      return models_.drag_mps2(alpha, h, velocity_from_energy_mps(energy, kEarthRadius_m + h)) - drag;
+    };
+    const BracketedRoot root = brent_root(residual, 0.0, h_top, 0.05, 0.0, kRootIterations);
+    if (root.status == Status::kNoBracket) return Status::kExtractionFailed;
+    if (root.status != Status::kOk && root.status != Status::kMaxIterations) return root.status;
+    const double h = root.x;
+    r_[k] = kEarthRadius_m + h;
+    v_[k] = velocity_from_energy_mps(energy, r_[k]);
+    double cl, cd;
+    models_.aero().coefficients(alpha, models_.mach(h, v_[k]), cl, cd);
+    cd_[k] = cd;
+    lod_[k] = cl / cd;
+    q_[k] = 0.5 * models_.atmosphere().density_kgpm3(h) * v_[k] * v_[k];
+  }
+  for (int k = 0; k < kGrid; ++k) {
+    const int km = k > 0 ? k - 1 : 0;
+    const int kp = k + 1 < kGrid ? k + 1 : kGrid - 1;
+    const double h = r_[k] - kEarthRadius_m;
+    DragLocal l;
+    l.drag = d_[k];
+    l.velocity = v_[k];
+    l.radius = r_[k];
+    l.gravity = gravity_mps2(r_[k]);
+    // d ln rho / dr and CD' by finite differences on the models; CD'' = 0 (Mease et al.).
+    l.rho_r_over_rho = models_.dlnrho_dr_fd(h, kDensityStep_m);
+    l.cd_prime_over_cd = models_.drag_coefficient_slope(alpha_[km], e_[km], r_[km] - kEarthRadius_m, alpha_[kp], e_[kp],
+                                                        r_[kp] - kEarthRadius_m) / cd_[k];
+    l.cd_second_over_cd = 0.0;
+    const double sin_gamma = sin_gamma_from_drag_slope(l, dp_[k]);  // (7.14)
+    if (!std::isfinite(sin_gamma)) return Status::kNonFinite;
+    if (std::fabs(sin_gamma) >= 1.0) return Status::kExtractionFailed;
+    gamma_[k] = std::asin(sin_gamma);
+    a0_[k] = drag_second_a_no_coriolis(l, dp_[k]);  // (7.19) without C_gamma
+    kfac_[k] = density_gravity_factor(l);
+    b_[k] = drag_second_b(l);                       // (7.20)
+    if (!std::isfinite(a0_[k] + kfac_[k] + b_[k] + lod_[k])) return Status::kNonFinite;
+  }
+  return Status::kOk;
+}
+
+// ------------------------------------------------------------------ reduced-order system
+double EntryPlanner::bank_magnitude(int k, double w, double lat, double chi, double& lod) const {
+  const double drag = d_[k] + w * (d_[k + 1] - d_[k]);
+  const double v = v_[k] + w * (v_[k + 1] - v_[k]);
+  const double a0 = a0_[k] + w * (a0_[k + 1] - a0_[k]);
+  const double kf = kfac_[k] + w * (kfac_[k + 1] - kfac_[k]);
+  const double b = b_[k] + w * (b_[k + 1] - b_[k]);
+  const double dpp = dpp_[k] + w * (dpp_[k + 1] - dpp_[k]);
+  lod = lod_[k] + w * (lod_[k + 1] - lod_[k]);
+  const double a = a0 + kf * coriolis_gamma(kEarthRate_radps, lat, chi, drag, v);  // (7.18)-(7.19)
+  return (dpp - a) / b;  // (L/D) cos(sigma) from D'' = a + b (L/D) cos(sigma) (7.17)
+}
+
+double EntryPlanner::sigma_sign_schedule(double energy, double lod_sin_abs, double lod) const {
+  if (energy > e_rev_) return sign0_ * lod_sin_abs;
+  if (energy > e_rev_ - de_rev_) {
+    // Method 3 of §7.4: sigma goes linearly (in energy) from s0 sigma_rev0 to -s0 sigma_rev0.
+    const double sigma = sign0_ * sigma_rev0_ * (1.0 - 2.0 * (e_rev_ - energy) / de_rev_);
+    return lod * std::sin(sigma);
+  }
+  return -sign0_ * lod_sin_abs;
+}
+
+// The reduced-order system is integrated with the flown range s = -int dE / D (7.10) as
+// independent variable: d()/ds = -D d()/dE. Steps uniform in s stay accurate where the
+// drag is tiny (planning from the actual drag at entry), where steps uniform in energy
+// would badly misestimate the range flown.
+void EntryPlanner::build_range_table() {
+  s_cum_[0] = 0.0;
+  for (int k = 0; k + 1 < kGrid; ++k) {
+    d_slope_[k] = (d_[k + 1] - d_[k]) / (e_[k + 1] - e_[k]);
+    s_cum_[k + 1] = s_cum_[k] + linear_segment_length(e_[k] - e_[k + 1], d_[k], d_[k + 1]);
+  }
+  d_slope_[kGrid - 1] = d_slope_[kGrid - 2];
+  s_total_ = s_cum_[kGrid - 1];
+}
+
+double EntryPlanner::energy_at_range(double s_m, int& k, double& w) const {
+  int lo = 0, hi = kGrid - 1;
+  if (s_m <= 0.0) { hi = 1; }
+  else if (s_m >= s_total_) { lo = kGrid - 2; }
+  for (int it = 0; it < 16 && hi - lo > 1; ++it) {
+    const int mid = (lo + hi) / 2;
+    if (s_cum_[mid] <= s_m) lo = mid; else hi = mid;
+  }
+  k = lo;
+  // Linear D in E within the cell: D(s) = D_k exp(-m (s - s_k)), E = E_k + (D - D_k) / m.
+  const double ds = s_m - s_cum_[k];
+  const double m = d_slope_[k];
+  const double x = -m * ds;
+  const double energy = std::fabs(x) < 1e-12 ? e_[k] - d_[k] * ds : e_[k] + d_[k] * std::expm1(x) / m;
+  w = clamp((e_[k] - energy) / (e_[k] - e_[k + 1]), 0.0, 1.0);
+  return energy;
+}
+
+void EntryPlanner::rop_derivative(double s_m, const Rop& y, Rop& dy) const {
+  int k;
+  double w;
+  const double energy = energy_at_range(s_m, k, w);
+  const double r = r_[k] + w * (r_[k + 1] - r_[k]);
+  const double gamma = gamma_[k] + w * (gamma_[k + 1] - gamma_[k]);
+  const double drag = d_[k] + w * (d_[k + 1] - d_[k]);
+  const double v = v_[k] + w * (v_[k + 1] - v_[k]);
+  double lod;
+  const double lod_cos = bank_magnitude(k, w, y.lat, y.chi, lod);
+  const double lc = clamp(lod_cos, -lod, lod);
+  const double lod_sin_abs = std::sqrt(lod * lod - lc * lc);  // (7.21)
+  const double lod_sin = sigma_sign_schedule(energy, lod_sin_abs, lod);
+  const double cg = std::cos(gamma), sd = std::sin(y.lat), cd = std::cos(y.lat);
+  const double sc = std::sin(y.chi), cc = std::cos(y.chi);
+  // (2.42)-(2.45) multiplied by dE/ds = -D.
+  dy.lon = sc * cg / (r * cd);                                              // (2.42)
+  dy.lat = cc * cg / r;                                                     // (2.43)
+  const double c_chi = -2.0 * kEarthRate_radps * (sd - cd * std::tan(gamma) * cc) / (drag * v);  // (2.45)
+  dy.chi = drag * (lod_sin / (v * v * cg) - c_chi) + cg * (sd / cd) * sc / r;                    // (2.44)
+}
+
+void EntryPlanner::rk4(double s_m, const Rop& y, double h, Rop& out) const {
+  Rop k1, k2, k3, k4, t;
+  rop_derivative(s_m, y, k1);
+  t = {y.lon + 0.5 * h * k1.lon, y.lat + 0.5 * h * k1.lat, y.chi + 0.5 * h * k1.chi};
+  rop_derivative(s_m + 0.5 * h, t, k2);
+  t = {y.lon + 0.5 * h * k2.lon, y.lat + 0.5 * h * k2.lat, y.chi + 0.5 * h * k2.chi};
+  rop_derivative(s_m + 0.5 * h, t, k3);
+  t = {y.lon + h * k3.lon, y.lat + h * k3.lat, y.chi + h * k3.chi};
+  rop_derivative(s_m + h, t, k4);
+  out.lon = y.lon + h / 6.0 * (k1.lon + 2.0 * k2.lon + 2.0 * k3.lon + k4.lon);
+  out.lat = y.lat + h / 6.0 * (k1.lat + 2.0 * k2.lat + 2.0 * k3.lat + k4.lat);
+  out.chi = y.chi + h / 6.0 * (k1.chi + 2.0 * k2.chi + 2.0 * k3.chi + k4.chi);
+}
+
+// s_rev >= total range: no reversal, states stored in base_. Otherwise restart from base_ at
+// the step containing s_rev; with store, every step boundary goes to track_.
+Status EntryPlanner::integrate(double s_rev, bool store, Rop& final_state) {
+  const int n = rk4_steps_;
+  const double h = s_total_ / n;
+  Rop y{from_.longitude_rad, from_.latitude_rad, from_.heading_rad};
+  if (s_rev >= s_total_) {
+    e_rev_ = taem_energy_ - 1e12;  // never reached
+    de_rev_ = 1.0;
+    sigma_rev0_ = 0.0;
+    base_[0] = y;
+    for (int i = 0; i < n; ++i) rk4(i * h, base_[i], h, base_[i + 1]);
+    final_state = base_[n];
+    if (store) {
+      for (int i = 0; i <= n; ++i) track_[i] = base_[i];
+    }
+    return std::isfinite(final_state.lon + final_state.lat + final_state.chi) ? Status::kOk : Status::kNonFinite;
+  }
+  if (s_rev < 0.0) s_rev = 0.0;
+  int j = static_cast<int>(s_rev / h);
+  j = j < 0 ? 0 : (j > n - 1 ? n - 1 : j);
+  if (store) {
+    for (int i = 0; i <= j; ++i) track_[i] = base_[i];
+  }
+  int k;
+  double w;
+  e_rev_ = energy_at_range(s_rev, k, w);
+  de_rev_ = 1.0;
+  sigma_rev0_ = 0.0;
+  y = base_[j];
+  const double h_part = s_rev - j * h;  // >= 0
+  if (h_part > 0.0) rk4(j * h, y, h_part, y);
+  // Reversal start: bank magnitude and D V at E_rev, span dE = 2 sigma_rev0 / sigma_dot_max * D V.
+  {
+    double lod;
+    const double lod_cos = bank_magnitude(k, w, y.lat, y.chi, lod);
+    sigma_rev0_ = std::acos(clamp(lod_cos / lod, -1.0, 1.0));
+    const double drag = d_[k] + w * (d_[k + 1] - d_[k]);
+    const double v = v_[k] + w * (v_[k + 1] - v_[k]);
+    de_rev_ = 2.0 * sigma_rev0_ / sigma_rate_max_ * drag * v;
+    if (!(de_rev_ > 1e-9)) de_rev_ = 1e-9;
+  }
+  if (h - h_part > 0.0) rk4(s_rev, y, h - h_part, y);
+  if (store) track_[j + 1] = y;
+  for (int i = j + 1; i < n; ++i) {
+    rk4(i * h, y, h, y);
+    if (store) track_[i + 1] = y;
+  }
+  final_state = y;
+  return std::isfinite(y.lon + y.lat + y.chi) ? Status::kOk : Status::kNonFinite;
+}
+
+Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, double& downrange_rad) {
+  build_range_table();
+  if (!(s_total_ > 0.0) || !std::isfinite(s_total_)) return Status::kNonFinite;
+  Rop end{};
+  Status s = integrate(2.0 * s_total_, false, end);  // base run, no reversal
+  if (s != Status::kOk) return s;
+  int evaluations = 1;
+  auto crossrange = [&](double s_trial) {
+    ++evaluations;
+    Rop y{};
+    if (integrate(s_trial, false, y) != Status::kOk) return std::nan("");
+    return track_errors(from_.latitude_rad, from_.longitude_rad, a_mission_, y.lat, y.lon).crossrange_rad;
+  };
+  const double f_tol = 0.25 * crossrange_tol_m_ / r_mean_;
+  // Reversal range from (just after) the planning point to the end; secant/Brent on a2.
+  const BracketedRoot root = brent_root(crossrange, 1e-9 * s_total_, s_total_ * (1.0 - 1e-9), 1e-9 * s_total_, f_tol, 60);
+  diag_.reversal_evaluations += evaluations;
+  if (root.status != Status::kOk) return root.status;
+  s_rev = root.x;
+  s = integrate(s_rev, false, end);
+  if (s != Status::kOk) return s;
+  const TrackErrors te = track_errors(from_.latitude_rad, from_.longitude_rad, a_mission_, end.lat, end.lon);
+  crossrange_rad = te.crossrange_rad;
+  downrange_rad = te.downrange_rad;
+  return Status::kOk;
+}
+
+// ------------------------------------------------------------------ plan
+Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
+  diag_ = PlannerDiagnostics{};
+  out.status = Status::kInvalidInput;
+  out.converged = false;
+  if (!initialised_) {
+    out.n_points = 0;
+    return Status::kInvalidInput;
+  }
+  from_ = from;
+  if (!(from_.energy_Jpkg > 0.0)) from_.energy_Jpkg = specific_energy_Jpkg(from_.radius_m, from_.velocity_mps);
+  auto fail = [&](Status s) {  // no partial profile is handed out on failure
+    diag_.status = s;
+    out.status = s;
+    out.converged = false;
+    out.n_points = 0;
+    return s;
+  };
+
+  if (!finite_state(from_)) return fail(Status::kNonFinite);
+  if (!(from_.energy_Jpkg > taem_energy_ * 1.001) || !(from_.radius_m > kEarthRadius_m)) return fail(Status::kInvalidInput);
+
+  // Mission geometry (7.1), (7.2) from the planning position to the TAEM point.
+  const GreatCircle gc = great_circle(from_.latitude_rad, from_.longitude_rad, taem_lat_, taem_lon_);
+  a_mission_ = gc.azimuth_rad;
+  diag_.b_mission_rad = gc.arc_rad;
+  diag_.a_mission_rad = gc.azimuth_rad;
+  diag_.chi_minus_a_rad = wrap_pi(from_.heading_rad - a_mission_);
+  sign0_ = initial_bank_sign(from_.heading_rad, a_mission_);
+  diag_.initial_bank_sign = sign0_;
+  r_mean_ = 0.5 * (from_.radius_m + taem_radius_);
+  const double range_desired = gc.arc_rad * r_mean_;  // R_d
+  double s_m = range_desired;                          // S0
+  diag_.s_initial_m = s_m;
+
+  const double alpha_from = alpha_profile_.alpha_rad(from_.energy_Jpkg / entry_energy_);
+  const double d_actual = from_.drag_mps2 > 0.0
+                              ? from_.drag_mps2
+                              : models_.drag_mps2(alpha_from, from_.radius_m - kEarthRadius_m, from_.velocity_mps);
+  Status s = build_grid(from_.energy_Jpkg, initial_drag_ == InitialDrag::kActual && d_actual < kGradedGridDrag_mps2);
+  if (s != Status::kOk) return fail(s);
+  s = equilibrium_glide_radius();
+  if (s != Status::kOk) return fail(s);
+  corridor();
+  // Closed corridor: the active maximum drag below Lmin. Lmin is a manoeuvrability limit,
+  // not a structural one (§7.1), so short closures are flown on the maximum constraint;
+  // a corridor closed over more than kMaxClosedFraction of the grid is a failure.
+  int closed = 0;
+  for (int k = 0; k < kGrid; ++k) {
+    if (!std::isfinite(d_min_[k]) || !(d_max_[k] > 0.0)) return fail(Status::kCorridorClosed);
+    if (d_max_[k] <= d_min_[k]) ++closed;
+  }
+  diag_.corridor_closed_points = closed;
+  if (closed > kMaxClosedFraction * kGrid) return fail(Status::kCorridorClosed);
+  breakpoints();
+  diag_.di_mps2 = initial_drag_ == InitialDrag::kActual ? d_actual : d_min_[0];
+  if (diag_.di_mps2 < kDragFloor_mps2) diag_.di_mps2 = kDragFloor_mps2;
+  diag_.df_mps2 = models_.drag_mps2(alpha_[kGrid - 1], taem_radius_ - kEarthRadius_m, taem_velocity_);
+
+  double s_rev = 0.0;
+  double cross = 0.0, down = 0.0;
+  bool converged = false;
+  for (int it = 0; it < max_iterations_; ++it) {
+    diag_.iterations = it + 1;
+    s = fit_profile(s_m);
+    if (s != Status::kOk) return fail(s);
+    s = extract();
+    if (s != Status::kOk) return fail(s);
+    s = reversal_search(s_rev, cross, down);
+    if (s != Status::kOk) return fail(s);
+    const double range_flown = down * r_mean_;  // R_i
+    diag_.s_final_m = s_m;
+    diag_.crossrange_err_m = cross * r_mean_;
+    diag_.downrange_err_m = range_desired - range_flown;
+    if (std::fabs(range_desired - range_flown) < downrange_tol_m_) {
+      converged = std::fabs(diag_.crossrange_err_m) < crossrange_tol_m_;
+      break;
+    }
+    s_m += range_desired - range_flown;  // (7.22)
+    if (!(s_m > 0.0)) return fail(Status::kNotConverged);
+  }
+  Rop end{};
+  s = integrate(s_rev, true, end);
+  if (s != Status::kOk) return fail(s);
+  diag_.reversal_energy_Jpkg = e_rev_;
+  diag_.converged = converged;
+  diag_.status = converged ? Status::kOk : Status::kNotConverged;
+  fill_output(out);
+  return diag_.status;
+}
+
+void EntryPlanner::fill_output(ReferenceProfile& out) {
+  const int n = rk4_steps_;
+  const double h = s_total_ / n;
+  int saturated = 0;
+  out.n_points = kGrid;
+  for (int k = 0; k < kGrid; ++k) {
+    const double energy = e_[k];
+    double u = s_cum_[k] / h;
+    int i = static_cast<int>(u);
+    i = i < 0 ? 0 : (i > n - 1 ? n - 1 : i);
+    const double w = clamp(u - i, 0.0, 1.0);
+    const double lat = track_[i].lat + w * (track_[i + 1].lat - track_[i].lat);
+    const double chi = track_[i].chi + w * (track_[i + 1].chi - track_[i].chi);
+    const int kk = k < kGrid - 1 ? k : kGrid - 2;
+    const double wk = k < kGrid - 1 ? 0.0 : 1.0;
+    double lod;
+    const double lod_cos = bank_magnitude(kk, wk, lat, chi, lod);
+    if (std::fabs(lod_cos) > lod) ++saturated;
+    const double sigma_mag = std::acos(clamp(lod_cos / lod, -1.0, 1.0));
+    double sigma;
+    if (energy > e_rev_) sigma = sign0_ * sigma_mag;
+    else if (energy > e_rev_ - de_rev_) sigma = sign0_ * sigma_rev0_ * (1.0 - 2.0 * (e_rev_ - energy) / de_rev_);
+    else sigma = -sign0_ * sigma_mag;
+    out.energy_Jpkg[k] = energy;
+    out.e_norm[k] = energy / entry_energy_;
+    out.drag_mps2[k] = d_[k];
+    out.drag_prime[k] = dp_[k];
+    out.drag_second[k] = dpp_[k];
+    out.a_coef[k] = a0_[k] + kfac_[k] * coriolis_gamma(kEarthRate_radps, lat, chi, d_[k], v_[k]);
+    out.b_coef[k] = b_[k];
+    out.radius_m[k] = r_[k];
+    out.velocity_mps[k] = v_[k];
+    out.gamma_rad[k] = gamma_[k];
+    out.alpha_rad[k] = alpha_[k];
+    out.lift_over_drag[k] = lod_[k];
+    out.sigma_rad[k] = sigma;
+    out.heading_rad[k] = chi;
+    out.dynamic_pressure_Pa[k] = q_[k];
+  }
+  diag_.bank_saturated_points = saturated;
+  out.reversal_energy_Jpkg = diag_.reversal_energy_Jpkg;
+  out.initial_bank_sign = sign0_;
+  out.entry_energy_Jpkg = entry_energy_;
+  out.taem_energy_Jpkg = taem_energy_;
+  out.dc_mps2 = diag_.dc_mps2;
+  out.e1_Jpkg = diag_.e1_Jpkg;
+  out.e2_Jpkg = diag_.e2_Jpkg;
+  out.trajectory_length_m = diag_.s_final_m;
+  out.crossrange_err_m = diag_.crossrange_err_m;
+  out.downrange_err_m = diag_.downrange_err_m;
+  out.iterations = diag_.iterations;
+  out.status = diag_.status;
+  out.converged = diag_.converged;
+}
+
+}  // namespace reentry::fsw

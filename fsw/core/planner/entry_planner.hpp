@@ -1,0 +1,146 @@
+// Entry planner after thesis ch. 7 (Mease et al. 2002 / Saraf et al. 2003):
+//   1. drag-energy corridor (7.3)-(7.7) from alpha(E) and an equilibrium-glide h(E);
+//   2. drag profile fitting a trajectory length S (three segments (7.11)-(7.12) or smooth);
+//   3. extraction of r(E) (7.13), gamma(E) (7.14) and bank magnitude (7.17)-(7.20);
+//   4. bank reversal search on the reduced-order system (2.42)-(2.45), method 3 of §7.4;
+//   5. length update (7.22) until the downrange matches.
+// Fixed capacity, no heap after init(), bounded loops, every failure returned as a Status.
+#pragma once
+
+#include "guidance_types.hpp"
+#include "models/onboard_models.hpp"
+#include "planner/drag_profile.hpp"
+
+namespace reentry::config {
+struct Mission;
+}
+
+namespace reentry::fsw {
+
+enum class DragProfileKind { kThreeSegment, kSmooth };
+enum class InitialDrag { kActual, kLmin };
+
+struct PlannerDiagnostics {
+  Status status = Status::kInvalidInput;
+  bool converged = false;
+  int iterations = 0;
+  int reversal_evaluations = 0;
+  double dc_mps2 = 0.0;
+  double di_mps2 = 0.0;
+  double df_mps2 = 0.0;
+  double e1_Jpkg = 0.0;
+  double e2_Jpkg = 0.0;
+  double s_initial_m = 0.0;
+  double s_final_m = 0.0;
+  double crossrange_err_m = 0.0;
+  double downrange_err_m = 0.0;
+  double b_mission_rad = 0.0;
+  double a_mission_rad = 0.0;
+  double chi_minus_a_rad = 0.0;
+  double reversal_energy_Jpkg = 0.0;
+  int initial_bank_sign = 1;
+  int corridor_closed_points = 0;  // grid points where max drag <= Lmin
+  int clipped_points = 0;          // drag points set to the active max constraint
+  int bank_saturated_points = 0;   // |D'' - a| / b exceeded L/D
+};
+
+class EntryPlanner {
+ public:
+  static constexpr int kGrid = kProfileCapacity;    // energy grid points
+  static constexpr int kMaxRkSteps = 4000;
+
+  Status init(const config::Mission& mission);
+  /// Plan from a state (entry or in flight). No allocation. out.status mirrors the result.
+  Status plan(const RelativeState& from, ReferenceProfile& out);
+  const PlannerDiagnostics& diagnostics() const { return diag_; }
+  const OnboardModels& models() const { return models_; }
+  /// Options that a mission selects; may be overridden before plan() (tools, tests).
+  void set_profile_kind(DragProfileKind k) { profile_kind_ = k; }
+  void set_initial_drag(InitialDrag d) { initial_drag_ = d; }
+  DragProfileKind profile_kind() const { return profile_kind_; }
+  double entry_energy_Jpkg() const { return entry_energy_; }
+  double taem_energy_Jpkg() const { return taem_energy_; }
+  /// RelativeState at the mission entry interface, drag from the on-board models.
+  RelativeState entry_state() const;
+  /// Active maximum-drag and minimum-drag (Lmin) corridor of the last plan, on the grid.
+  double corridor_max(int k) const { return d_max_[k]; }
+  double corridor_min(int k) const { return d_min_[k]; }
+  double grid_energy(int k) const { return e_[k]; }
+
+ private:
+  struct Rop { double lon, lat, chi; };   // reduced-order state (2.42)-(2.44)
+
+  Status build_grid(double e0, bool graded);
+  Status equilibrium_glide_radius();
+  void corridor();
+  void breakpoints();
+  Status fit_profile(double s_m);
+  Status extract();
+  void build_range_table();
+  double energy_at_range(double s_m, int& k, double& w) const;
+  void rop_derivative(double s_m, const Rop& y, Rop& dy) const;
+  double bank_magnitude(int k, double w, double lat, double chi, double& lod) const;
+  void rk4(double s_m, const Rop& y, double h, Rop& out) const;
+  Status integrate(double s_rev, bool store, Rop& final_state);
+  Status reversal_search(double& e_rev, double& crossrange_rad, double& downrange_rad);
+  void fill_output(ReferenceProfile& out);
+  double sigma_sign_schedule(double energy, double lod_sin_abs, double lod) const;
+
+  OnboardModels models_;
+  AlphaProfile alpha_profile_;
+  DragProfileKind profile_kind_ = DragProfileKind::kSmooth;
+  InitialDrag initial_drag_ = InitialDrag::kActual;
+
+  // mission data
+  RelativeState entry_{};
+  double entry_energy_ = 0.0;
+  double taem_energy_ = 0.0;
+  double taem_radius_ = 0.0, taem_velocity_ = 0.0, taem_lat_ = 0.0, taem_lon_ = 0.0;
+  double heat_max_ = 0.0, q_alpha_max_ = 0.0, n_max_ = 0.0, q_max_ = 0.0;
+  double sigma_rate_max_ = 0.0;
+  int rk4_steps_ = 600;
+  int max_iterations_ = 20;
+  double downrange_tol_m_ = 1500.0;
+  double crossrange_tol_m_ = 1000.0;
+  bool initialised_ = false;
+
+  // per-plan state
+  RelativeState from_{};
+  double e0_ = 0.0, r_mean_ = 0.0;
+  double a_mission_ = 0.0;
+  int sign0_ = 1;
+  ThreeSegmentProfile three_{};
+  SmoothProfile smooth_{};
+  // reversal modelling (method 3): start energy, span, bank at start
+  double e_rev_ = 0.0, de_rev_ = 0.0, sigma_rev0_ = 0.0;
+
+  // grid arrays (index 0 = planning energy, kGrid-1 = TAEM)
+  double e_[kGrid] = {};
+  double alpha_[kGrid] = {};
+  double r_[kGrid] = {};
+  double v_[kGrid] = {};
+  double d_min_[kGrid] = {};
+  double d_max_[kGrid] = {};
+  double d_heat_[kGrid] = {};
+  double d_qalpha_[kGrid] = {};
+  double d_[kGrid] = {};
+  double dp_[kGrid] = {};
+  double dpp_[kGrid] = {};
+  double cd_[kGrid] = {};
+  double gamma_[kGrid] = {};
+  double lod_[kGrid] = {};
+  double a0_[kGrid] = {};
+  double kfac_[kGrid] = {};
+  double b_[kGrid] = {};
+  double q_[kGrid] = {};
+  double s_cum_[kGrid] = {};      // -int dE / D from the planning energy (linear D per cell)
+  double d_slope_[kGrid] = {};    // dD/dE of the linear interpolant in each cell
+  double s_total_ = 0.0;
+  // reduced-order states at the RK4 step boundaries (uniform in flown range)
+  Rop base_[kMaxRkSteps + 1] = {};
+  Rop track_[kMaxRkSteps + 1] = {};
+
+  PlannerDiagnostics diag_{};
+};
+
+}  // namespace reentry::fsw

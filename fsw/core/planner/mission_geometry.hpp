@@ -1,0 +1,30 @@
+// Spherical geometry of the mission (thesis §7.4, fig. 7.1, 7.17-7.19).
+#pragma once
+
+namespace reentry::fsw {
+
+/// Great-circle arc b (7.1) and initial azimuth A (7.2) from point 1 to point 2, radians.
+/// The azimuth quadrant is resolved as the thesis's acos2 does (atan2 form).
+struct GreatCircle {
+  double arc_rad = 0.0;
+  double azimuth_rad = 0.0;
+};
+GreatCircle great_circle(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad);
+
+/// Triangle steps 1-4 of §7.4: cross-range error a2 (signed, + right of the entry->TAEM
+/// great circle) and downrange b2 projected on that circle, for the end point X.
+struct TrackErrors {
+  double crossrange_rad = 0.0;
+  double downrange_rad = 0.0;
+};
+TrackErrors track_errors(double lat_entry_rad, double lon_entry_rad, double azimuth_mission_rad,
+                         double lat_x_rad, double lon_x_rad);
+
+/// Angle wrapped to (-pi, pi].
+double wrap_pi(double angle_rad);
+
+/// Initial bank sign from the quadrant rule (fig. 7.20): steer towards the TAEM point.
+/// chi - A > 0 (heading right of the target) -> bank left (-1), otherwise +1.
+int initial_bank_sign(double heading_rad, double azimuth_mission_rad);
+
+}  // namespace reentry::fsw

@@ -1,0 +1,122 @@
+// Planner benchmarks (DESIGN §8: full plan from the entry interface <= 20 ms median,
+// <= 50 ms worst case). Each case also runs as Iterations(1) x Repetitions(30) with a max
+// statistic, so the worst single plan is reported.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "planner/entry_planner.hpp"
+#include "reference_missions.hpp"
+
+#ifdef REENTRY_HAVE_CONFIG_LOADER
+#include <reentry/config/mission.hpp>
+#endif
+
+namespace {
+
+using reentry::fsw::EntryPlanner;
+using reentry::fsw::ReferenceProfile;
+using reentry::fsw::RelativeState;
+using reentry::fsw::Status;
+
+reentry::config::Mission mission(const std::string& name, const char* profile, const char* initial_drag) {
+  reentry::config::Mission m;
+  bool loaded = false;
+#ifdef REENTRY_HAVE_CONFIG_LOADER
+  reentry::config::LoadResult r = reentry::config::load_mission(name);
+  if (r.ok) { m = r.mission; loaded = true; }
+#endif
+  if (!loaded) m = name == "horus" ? reentry::planner_test::horus_fallback() : reentry::planner_test::x33_fallback();
+  m.guidance.drag_profile = profile;
+  m.guidance.initial_drag = initial_drag;
+  return m;
+}
+
+double worst(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); }
+
+// Planner and profile live on the heap of the benchmark harness (set up once, outside timing).
+struct Fixture {
+  std::unique_ptr<EntryPlanner> planner = std::make_unique<EntryPlanner>();
+  std::unique_ptr<ReferenceProfile> profile = std::make_unique<ReferenceProfile>();
+  RelativeState from{};
+};
+
+bool setup(Fixture& f, const std::string& name, const char* profile, const char* initial_drag, bool mid_flight) {
+  if (f.planner->init(mission(name, profile, initial_drag)) != Status::kOk) return false;
+  f.from = f.planner->entry_state();
+  if (!mid_flight) return true;
+  // A state at about half the entry energy on the entry plan.
+  if (f.planner->plan(f.from, *f.profile) != Status::kOk) return false;
+  const ReferenceProfile& p = *f.profile;
+  int k = 0;
+  while (k + 1 < p.n_points && p.e_norm[k] > 0.5) ++k;
+  RelativeState s = f.from;
+  s.radius_m = p.radius_m[k];
+  s.altitude_m = s.radius_m - reentry::fsw::kEarthRadius_m;
+  s.velocity_mps = p.velocity_mps[k];
+  s.flight_path_rad = p.gamma_rad[k];
+  s.heading_rad = p.heading_rad[k];
+  s.energy_Jpkg = p.energy_Jpkg[k];
+  s.drag_mps2 = p.drag_mps2[k];
+  // Position: the plan's ground track up to point k ((2.42)-(2.43), exact range of each
+  // linear-drag cell, heading linear in range within a cell).
+  double lat = s.latitude_rad, lon = s.longitude_rad;
+  for (int i = 0; i < k; ++i) {
+    const double da = p.drag_mps2[i], db = p.drag_mps2[i + 1], de = p.energy_Jpkg[i] - p.energy_Jpkg[i + 1];
+    const double len = std::abs(db - da) < 1e-12 * da ? de / da : de * std::log(db / da) / (db - da);
+    const double ca = p.heading_rad[i], cb = p.heading_rad[i + 1];
+    const bool flat = std::abs(cb - ca) < 1e-9;
+    const double ic = flat ? len * std::cos(ca) : len * (std::sin(cb) - std::sin(ca)) / (cb - ca);
+    const double is = flat ? len * std::sin(ca) : len * (std::cos(ca) - std::cos(cb)) / (cb - ca);
+    const double r = 0.5 * (p.radius_m[i] + p.radius_m[i + 1]);
+    const double cg = std::cos(0.5 * (p.gamma_rad[i] + p.gamma_rad[i + 1]));
+    const double dlat = cg / r * ic;
+    lon += cg / (r * std::cos(lat + 0.5 * dlat)) * is;
+    lat += dlat;
+  }
+  s.latitude_rad = lat;
+  s.longitude_rad = lon;
+  f.from = s;
+  return true;
+}
+
+void run(benchmark::State& state, const std::string& name, const char* profile, const char* initial_drag, bool mid) {
+  Fixture f;
+  if (!setup(f, name, profile, initial_drag, mid)) {
+    state.SkipWithError("planner setup failed");
+    return;
+  }
+  int iterations = 0;
+  Status last = Status::kOk;
+  for (auto _ : state) {
+    last = f.planner->plan(f.from, *f.profile);
+    benchmark::DoNotOptimize(f.profile->drag_mps2[0]);
+    iterations = f.planner->diagnostics().iterations;
+  }
+  state.counters["length_iterations"] = iterations;
+  state.counters["converged"] = f.planner->diagnostics().converged ? 1 : 0;
+  state.counters["status"] = static_cast<int>(last);
+}
+
+void BM_PlanFromEntry_X33(benchmark::State& s) { run(s, "x33", "three_segment", "actual", false); }
+void BM_PlanFromEntry_X33_Smooth(benchmark::State& s) { run(s, "x33", "smooth", "actual", false); }
+void BM_PlanFromEntry_Horus(benchmark::State& s) { run(s, "horus", "smooth", "actual", false); }  // mission defaults
+void BM_PlanUpdate_MidFlight_X33(benchmark::State& s) { run(s, "x33", "smooth", "actual", true); }
+
+
+}  // namespace
+
+#define REENTRY_PLANNER_BENCH(fn)                                                        \
+  BENCHMARK(fn)->Unit(benchmark::kMillisecond);                                          \
+  BENCHMARK(fn)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(30)->         \
+      ComputeStatistics("max", worst)->ReportAggregatesOnly(true)
+
+REENTRY_PLANNER_BENCH(BM_PlanFromEntry_X33);
+REENTRY_PLANNER_BENCH(BM_PlanFromEntry_X33_Smooth);
+REENTRY_PLANNER_BENCH(BM_PlanFromEntry_Horus);
+REENTRY_PLANNER_BENCH(BM_PlanUpdate_MidFlight_X33);
+

@@ -1,0 +1,109 @@
+// reentry_plan --mission <name|file> [--profile-out plan.csv] [--drag-profile three_segment|smooth]
+//              [--initial-drag actual|lmin]
+// Plans from the mission's entry state (drag from the on-board models) and prints ONE JSON line.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <reentry/config/mission.hpp>
+
+#include "planner/entry_planner.hpp"
+
+namespace {
+constexpr double kRadToDeg = 180.0 / M_PI;
+
+bool write_profile_csv(const std::string& path, const reentry::fsw::ReferenceProfile& p) {
+  std::ofstream out(path);
+  if (!out) return false;
+  out << "energy_Jpkg,e_norm,drag_mps2,drag_prime,drag_second,a_coef,b_coef,altitude_m,velocity_mps,"
+         "gamma_deg,alpha_deg,lift_over_drag,sigma_deg,heading_deg,q_Pa\n";
+  out.precision(10);
+  for (int k = 0; k < p.n_points; ++k) {
+    out << p.energy_Jpkg[k] << ',' << p.e_norm[k] << ',' << p.drag_mps2[k] << ',' << p.drag_prime[k] << ','
+        << p.drag_second[k] << ',' << p.a_coef[k] << ',' << p.b_coef[k] << ','
+        << p.radius_m[k] - reentry::fsw::kEarthRadius_m << ',' << p.velocity_mps[k] << ','
+        << p.gamma_rad[k] * kRadToDeg << ',' << p.alpha_rad[k] * kRadToDeg << ',' << p.lift_over_drag[k] << ','
+        << p.sigma_rad[k] * kRadToDeg << ',' << p.heading_rad[k] * kRadToDeg << ',' << p.dynamic_pressure_Pa[k] << '\n';
+  }
+  return static_cast<bool>(out);
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Plan a reference drag/bank profile from the mission's entry interface (thesis ch. 7)"};
+  std::string mission_arg, profile_out, drag_profile, initial_drag;
+  app.add_option("--mission", mission_arg, "mission name (x33, horus, ...) or path to a .toml file")->required();
+  app.add_option("--profile-out", profile_out, "write the planned profile as CSV");
+  app.add_option("--drag-profile", drag_profile, "three_segment or smooth (default: mission file)")
+      ->check(CLI::IsMember({"three_segment", "smooth"}));
+  app.add_option("--initial-drag", initial_drag, "actual or lmin (default: mission file)")
+      ->check(CLI::IsMember({"actual", "lmin"}));
+  CLI11_PARSE(app, argc, argv);
+
+  reentry::config::LoadResult loaded = reentry::config::load_mission(mission_arg);
+  if (!loaded.ok) {
+    std::cerr << "reentry_plan: " << loaded.error << '\n';
+    return 2;
+  }
+  reentry::config::Mission& mission = loaded.mission;
+  if (!drag_profile.empty()) mission.guidance.drag_profile = drag_profile;
+  if (!initial_drag.empty()) mission.guidance.initial_drag = initial_drag;
+
+  auto planner = std::make_unique<reentry::fsw::EntryPlanner>();  // large fixed arrays: not on the stack
+  const reentry::fsw::Status init_status = planner->init(mission);
+  if (init_status != reentry::fsw::Status::kOk) {
+    std::cerr << "reentry_plan: planner init failed: " << reentry::fsw::to_string(init_status) << '\n';
+    return 2;
+  }
+  auto profile = std::make_unique<reentry::fsw::ReferenceProfile>();
+  const reentry::fsw::RelativeState entry = planner->entry_state();
+  const auto t0 = std::chrono::steady_clock::now();
+  const reentry::fsw::Status status = planner->plan(entry, *profile);
+  const auto t1 = std::chrono::steady_clock::now();
+  const reentry::fsw::PlannerDiagnostics& d = planner->diagnostics();
+  const double e_entry = planner->entry_energy_Jpkg();
+
+  nlohmann::json j;
+  j["mission"] = mission.name;
+  j["drag_profile"] = mission.guidance.drag_profile;
+  j["initial_drag"] = mission.guidance.initial_drag;
+  j["converged"] = d.converged;
+  j["iterations"] = d.iterations;
+  j["status"] = reentry::fsw::to_string(status);
+  j["b_mission_deg"] = d.b_mission_rad * kRadToDeg;
+  j["A_mission_deg"] = d.a_mission_rad * kRadToDeg;
+  j["chi_minus_A_deg"] = d.chi_minus_a_rad * kRadToDeg;
+  j["initial_bank_sign"] = d.initial_bank_sign;
+  j["S_initial_km"] = d.s_initial_m / 1e3;
+  j["S_final_km"] = d.s_final_m / 1e3;
+  j["Di_mps2"] = d.di_mps2;
+  j["Dc_mps2"] = d.dc_mps2;
+  j["Df_mps2"] = d.df_mps2;
+  j["E1_norm"] = d.e1_Jpkg / e_entry;
+  j["E2_norm"] = d.e2_Jpkg / e_entry;
+  j["reversal_E_norm"] = d.reversal_energy_Jpkg / e_entry;
+  j["crossrange_err_km"] = d.crossrange_err_m / 1e3;
+  j["downrange_err_km"] = d.downrange_err_m / 1e3;
+  j["clipped_points"] = d.clipped_points;
+  j["bank_saturated_points"] = d.bank_saturated_points;
+  j["reversal_evaluations"] = d.reversal_evaluations;
+  j["plan_ms"] = std::chrono::duration<double, std::milli>(t1 - t0).count();
+  if (!profile_out.empty()) {
+    const bool ok = write_profile_csv(profile_out, *profile);
+    j["profile_out"] = profile_out;
+    if (!ok) {
+      std::cerr << "reentry_plan: cannot write " << profile_out << '\n';
+      std::cout << j.dump() << std::endl;
+      return 2;
+    }
+  }
+  std::cout << j.dump() << std::endl;
+  return status == reentry::fsw::Status::kOk ? 0 : 1;
+}
