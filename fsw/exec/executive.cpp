@@ -1,0 +1,277 @@
+#include "exec/executive.hpp"
+
+#include <chrono>
+#include <cmath>
+
+namespace reentry::fsw::exec {
+namespace {
+
+std::int64_t now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// Minimum spacing of drag-error replans, so a persistent error does not request every cycle.
+constexpr double kDragErrorReplanSpacing_s = 5.0;
+// Upper bound on spin iterations of one lockstep wait (the wall-time limit normally ends it).
+constexpr long kMaxWaitSpins = 2000000000L;
+
+}  // namespace
+
+RelativeState predict_state(const RelativeState& s, int n_ticks, double dt_s) {
+  RelativeState p = s;
+  for (int i = 0; i < n_ticks; ++i) {
+    p.energy_Jpkg -= p.drag_mps2 * p.velocity_mps * dt_s;  // dE/dt = -D V  (7.8 differentiated)
+    p.velocity_mps -= p.drag_mps2 * dt_s;                  // dV/dt = -D (gravity along track neglected)
+    if (p.velocity_mps < 0.0) p.velocity_mps = 0.0;
+    p.t_s += dt_s;
+  }
+  return p;
+}
+
+Executive::~Executive() { shutdown(); }
+
+bool Executive::finite_state(const RelativeState& s) {
+  const double v[] = {s.t_s, s.radius_m, s.altitude_m, s.longitude_rad, s.latitude_rad,
+                      s.velocity_mps, s.flight_path_rad, s.heading_rad, s.energy_Jpkg,
+                      s.drag_mps2, s.lift_mps2};
+  for (double x : v) {
+    if (!std::isfinite(x)) return false;
+  }
+  return true;
+}
+
+Status Executive::init(const ExecConfig& cfg, PlanComputer& planner, CommandLaw& law) {
+  if (initialised_) return Status::kInvalidInput;
+  if (!(cfg.gnc_rate_hz > 0.0) || cfg.plan_latency_ticks < 1 || !(cfg.replan_period_s > 0.0) ||
+      !(cfg.plan_wait_limit_s > 0.0)) {
+    return Status::kInvalidInput;
+  }
+  cfg_ = cfg;
+  planner_ = &planner;
+  law_ = &law;
+  stop_.store(false, std::memory_order_release);
+  if (cfg_.mode != PlanMode::kSynchronous) {
+    worker_ = std::thread([this] { worker_loop(); });
+  }
+  last_valid_.phase = Phase::kSafe;
+  last_valid_.health_flags = kHealthNoPlan;
+  initialised_ = true;
+  return Status::kOk;
+}
+
+void Executive::shutdown() {
+  stop_.store(true, std::memory_order_release);
+  if (worker_.joinable()) worker_.join();
+}
+
+void Executive::worker_loop() {
+  // Static storage of the worker: one request and one result in flight at a time.
+  PlanRequest req;
+  PlanResult& result = worker_result_;
+  while (!stop_.load(std::memory_order_acquire)) {
+    if (!requests_.try_pop(req)) {
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+      continue;
+    }
+    const std::int64_t t0 = now_ns();
+    result.id = req.id;
+    result.status = planner_->compute(req.from, result.profile);
+    result.compute_ms = static_cast<double>(now_ns() - t0) * 1e-6;
+    // Only one request is in flight, so the two-slot queue is never full; bounded retry anyway.
+    for (int i = 0; i < 100000 && !results_.try_push(result); ++i) std::this_thread::yield();
+  }
+}
+
+void Executive::request_plan(std::int64_t tick, const RelativeState& s) {
+  PlanRequest& req = request_buffer_;
+  req.id = next_request_id_++;
+  req.from = predict_state(s, cfg_.plan_latency_ticks, dt_s());
+  request_tick_ = tick;
+  due_tick_ = tick + cfg_.plan_latency_ticks;
+  request_wall_ns_ = now_ns();
+  last_request_t_s_ = s.t_s;
+  ++counters_.plan_requests;
+  if (cfg_.mode == PlanMode::kSynchronous) {
+    const std::int64_t t0 = now_ns();
+    pending_.id = req.id;
+    pending_.status = planner_->compute(req.from, pending_.profile);
+    pending_.compute_ms = static_cast<double>(now_ns() - t0) * 1e-6;
+    pending_ready_ = true;
+    in_flight_ = true;
+    return;
+  }
+  if (!requests_.try_push(req)) return;  // cannot happen with one request in flight
+  in_flight_ = true;
+  pending_ready_ = false;
+  expected_id_ = req.id;
+}
+
+void Executive::adopt(PlanResult& r, double t_s, CycleOutput& out) {
+  in_flight_ = false;
+  pending_ready_ = false;
+  ++counters_.planner_runs;
+  counters_.planner_ms_last = r.compute_ms;
+  if (r.compute_ms > counters_.planner_ms_max) counters_.planner_ms_max = r.compute_ms;
+  if (r.status != Status::kOk) {
+    ++counters_.planner_failures;
+    sticky_flags_ |= kHealthPlannerFailed;
+    return;
+  }
+  sticky_flags_ &= ~kHealthPlannerFailed;
+  active_ = r.profile;
+  active_.seq = next_plan_seq_++;
+  has_profile_ = true;
+  law_->set_profile(active_);
+  ++counters_.plans_adopted;
+  counters_.plan_latency_ms = static_cast<double>(now_ns() - request_wall_ns_) * 1e-6;
+  counters_.plan_adopted_t_s = t_s;
+  out.plan_adopted = true;
+}
+
+bool Executive::pop_expected() {
+  // Discard results of abandoned (timed-out) requests.
+  for (int i = 0; i < 4; ++i) {
+    if (!results_.try_pop(pending_)) return false;
+    if (pending_.id == expected_id_) {
+      pending_ready_ = true;
+      return true;
+    }
+  }
+  return false;
+}
+
+void Executive::try_adopt(std::int64_t tick, double t_s, CycleOutput& out) {
+  if (!in_flight_) return;
+  if (cfg_.mode == PlanMode::kRealtime) {
+    if (pending_ready_ || pop_expected()) adopt(pending_, t_s, out);
+    return;
+  }
+  if (tick < due_tick_) return;
+  if (cfg_.mode == PlanMode::kLockstep && !pending_ready_ && !pop_expected()) {
+    // Late plan: wait (bounded) so that the run stays deterministic, and count the overrun.
+    ++counters_.plan_overruns;
+    cycle_flags_ |= kHealthPlanOverrun;
+    waits_started_.fetch_add(1, std::memory_order_acq_rel);
+    const std::int64_t deadline = now_ns() + static_cast<std::int64_t>(cfg_.plan_wait_limit_s * 1e9);
+    for (long spin = 0; spin < kMaxWaitSpins; ++spin) {
+      if (pop_expected()) break;
+      if (now_ns() > deadline) break;
+      std::this_thread::yield();
+    }
+    if (!pending_ready_) {
+      ++counters_.plan_timeouts;
+      cycle_flags_ |= kHealthPlanTimeout;
+      in_flight_ = false;  // abandoned: its result is discarded when it arrives
+      return;
+    }
+  }
+  if (pending_ready_) adopt(pending_, t_s, out);
+}
+
+CycleOutput Executive::step(const NavInput& nav) {
+  const std::int64_t t_start = now_ns();
+  CycleOutput out;
+  cycle_flags_ = 0;
+  out.tick = nav.tick;
+  out.t_s = nav.state.t_s;
+  if (!initialised_) {
+    out.emitted = false;
+    return out;
+  }
+
+  // 1. Validate the navigation sample.
+  bool valid = true;
+  if (have_last_nav_ && nav.tick == last_tick_) {
+    ++counters_.duplicate_ticks;
+    out.emitted = false;
+    return out;  // duplicate: the command for this tick was already produced
+  }
+  if (have_last_nav_ && nav.tick < last_tick_) valid = false;  // tick going backwards
+  if (valid && !finite_state(nav.state)) {
+    valid = false;
+    if (!have_last_nav_ || nav.tick > last_tick_) {
+      if (have_last_nav_ && nav.tick > last_tick_ + 1) counters_.skipped_ticks += static_cast<int>(nav.tick - last_tick_ - 1);
+      last_tick_ = nav.tick;  // the tick was seen (its data were bad)
+      have_last_nav_ = true;
+    }
+  }
+  if (valid && have_last_nav_ && have_last_time_ && nav.state.t_s <= last_t_s_) valid = false;  // time going backwards
+  if (!valid) {
+    ++counters_.invalid_nav;
+    out = last_valid_;
+    out.emitted = true;
+    out.tick = nav.tick;
+    out.t_s = nav.state.t_s;
+    out.plan_adopted = false;
+    out.health_flags = last_valid_.health_flags | kHealthNavInvalid;
+    finish_timing(t_start);
+    return out;
+  }
+  if (have_last_nav_ && nav.tick > last_tick_ + 1) {
+    counters_.skipped_ticks += static_cast<int>(nav.tick - last_tick_ - 1);
+  }
+  have_last_nav_ = true;
+  have_last_time_ = true;
+  last_tick_ = nav.tick;
+  last_t_s_ = nav.state.t_s;
+
+  // 2. Adopt a due plan.
+  try_adopt(nav.tick, nav.state.t_s, out);
+
+  // 3-4. Track and filter.
+  LawOutput law;
+  const Status law_status = law_->step(nav.state, dt_s(), has_profile_, law);
+  out.emitted = true;
+  if (law_status != Status::kOk || !std::isfinite(law.alpha_rad) || !std::isfinite(law.sigma_rad)) {
+    // Law could not produce a command: hold the last one.
+    out.alpha_rad = last_valid_.alpha_rad;
+    out.sigma_rad = last_valid_.sigma_rad;
+    out.phase = last_valid_.phase;
+  } else {
+    out.alpha_rad = law.alpha_rad;
+    out.sigma_rad = law.sigma_rad;
+    out.phase = law.phase;
+  }
+  out.drag_err_mps2 = law.drag_err_mps2;
+  out.heading_err_rad = law.heading_err_rad;
+  out.plan_seq = has_profile_ ? active_.seq : 0;
+
+  // 5. Plan scheduling: entry (end of the initial descent), period, after the reversal,
+  //    large drag error. One request in flight at a time.
+  if (last_phase_ == Phase::kReversal && law.phase != Phase::kReversal) replan_after_reversal_ = true;
+  last_phase_ = law.phase;
+  if (!in_flight_) {
+    const RelativeState& s = nav.state;
+    bool want = false;
+    if (!first_plan_requested_) {
+      want = s.drag_mps2 >= cfg_.initial_descent_drag_mps2;
+      if (want) first_plan_requested_ = true;
+    } else if (replan_after_reversal_) {
+      want = true;
+      replan_after_reversal_ = false;
+    } else if (s.t_s - last_request_t_s_ >= cfg_.replan_period_s - 1e-9) {
+      want = true;
+    } else if (has_profile_ && law.drag_ref_mps2 > 0.0 &&
+               std::fabs(law.drag_err_mps2) > cfg_.replan_drag_error_frac * law.drag_ref_mps2 &&
+               s.t_s - last_request_t_s_ >= kDragErrorReplanSpacing_s) {
+      want = true;
+    }
+    if (want) request_plan(nav.tick, s);
+  }
+
+  std::int32_t flags = sticky_flags_ | cycle_flags_;
+  if (!has_profile_) flags |= kHealthNoPlan;
+  out.health_flags = flags;
+  last_valid_ = out;
+  finish_timing(t_start);
+  return out;
+}
+
+void Executive::finish_timing(std::int64_t t_start_ns) {
+  counters_.cycle_us_last = static_cast<double>(now_ns() - t_start_ns) * 1e-3;
+  if (counters_.cycle_us_last > counters_.cycle_us_max) counters_.cycle_us_max = counters_.cycle_us_last;
+}
+
+}  // namespace reentry::fsw::exec

@@ -1,0 +1,200 @@
+// Fixed-rate guidance executive (DESIGN §2-§3): one cycle per navigation tick,
+//   validate nav -> adopt a due plan -> track + filter -> command + status -> request a plan.
+// The planner runs on a worker thread started at init; requests and results cross threads
+// through preallocated lock-free SPSC queues (spsc_queue.hpp). The planner and the per-cycle
+// command law (tracker + rate filter) are injected through small interfaces so the executive
+// can be tested with deterministic doubles; the guidance process wires the real components.
+// No heap allocation, no exceptions, no I/O after init; every wait is bounded.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <thread>
+
+#include "exec/spsc_queue.hpp"
+#include "guidance_types.hpp"
+
+namespace reentry::fsw::exec {
+
+/// How plans are computed and adopted.
+enum class PlanMode : std::int8_t {
+  kLockstep = 0,     // worker thread; plan requested at tick k adopted exactly at k + L (waits if late)
+  kRealtime = 1,     // worker thread; plan adopted at the first cycle after it is ready
+  kSynchronous = 2,  // computed inline at the request, adopted at k + L (same results as lockstep)
+};
+
+/// Health flag bits (guidance_cmd_t / guidance_status_t health_flags).
+enum HealthFlag : std::int32_t {
+  kHealthNavInvalid = 1 << 0,     // last nav rejected: last valid command held
+  kHealthPlanOverrun = 1 << 1,    // a plan was not ready at its adoption tick
+  kHealthPlanTimeout = 1 << 2,    // bounded wait for a plan expired; plan discarded
+  kHealthPlannerFailed = 1 << 3,  // last plan returned a non-ok status (not adopted)
+  kHealthNoPlan = 1 << 4,         // no plan adopted yet
+  kHealthLinkLoss = 1 << 5,       // set by the process adapter on link loss
+};
+
+/// The planner, as seen by the executive. Called on the worker thread (or inline in
+/// synchronous mode); must not allocate after init.
+class PlanComputer {
+ public:
+  virtual ~PlanComputer() = default;
+  virtual Status compute(const RelativeState& from, ReferenceProfile& out) = 0;
+};
+
+/// Per-cycle command law: tracker followed by the rate filter.
+struct LawOutput {
+  double alpha_rad = 0.0;
+  double sigma_rad = 0.0;
+  Phase phase = Phase::kInitialDescent;
+  double drag_ref_mps2 = 0.0;
+  double drag_err_mps2 = 0.0;
+  double heading_err_rad = 0.0;
+};
+
+class CommandLaw {
+ public:
+  virtual ~CommandLaw() = default;
+  virtual void set_profile(const ReferenceProfile& profile) = 0;
+  /// `has_profile` is false until the first plan is adopted (the law holds its entry attitude).
+  virtual Status step(const RelativeState& state, double dt_s, bool has_profile, LawOutput& out) = 0;
+};
+
+struct ExecConfig {
+  double gnc_rate_hz = 10.0;
+  int plan_latency_ticks = 5;               // L (>= 1: requested after the law step of tick k)
+  double replan_period_s = 50.0;
+  double replan_drag_error_frac = 0.15;
+  double initial_descent_drag_mps2 = 0.05 * 9.80665;  // first plan requested once sensed drag exceeds this
+  double plan_wait_limit_s = 30.0;          // bound of the lockstep wait for a late plan
+  PlanMode mode = PlanMode::kLockstep;
+};
+
+/// One navigation sample, already converted to the Earth-relative state by the adapter.
+struct NavInput {
+  std::int64_t tick = 0;
+  RelativeState state;
+};
+
+struct CycleOutput {
+  bool emitted = false;          // false: duplicate tick, nothing to publish
+  std::int64_t tick = 0;
+  double t_s = 0.0;
+  double alpha_rad = 0.0;
+  double sigma_rad = 0.0;
+  Phase phase = Phase::kInitialDescent;
+  int plan_seq = 0;
+  std::int32_t health_flags = 0;
+  double drag_err_mps2 = 0.0;
+  double heading_err_rad = 0.0;
+  bool plan_adopted = false;     // a plan was adopted in this cycle
+};
+
+struct ExecCounters {
+  double cycle_us_last = 0.0;
+  double cycle_us_max = 0.0;
+  int plan_overruns = 0;
+  int plan_timeouts = 0;
+  int planner_runs = 0;
+  int planner_failures = 0;
+  double planner_ms_last = 0.0;
+  double planner_ms_max = 0.0;
+  double plan_latency_ms = 0.0;   // request to adoption, wall time
+  double plan_adopted_t_s = -1.0; // simulation time of the last adoption
+  int invalid_nav = 0;
+  int duplicate_ticks = 0;
+  int skipped_ticks = 0;
+  int plans_adopted = 0;
+  int plan_requests = 0;
+};
+
+/// Propagate the state over n ticks of dt with the simple energy model used for the
+/// planning snapshot: altitude and angles frozen, V' = -D, E' = -D V (dE/dt = -D V, 7.8),
+/// D held at the sensed value. Documented as a first-order prediction over L ticks.
+RelativeState predict_state(const RelativeState& s, int n_ticks, double dt_s);
+
+class Executive {
+ public:
+  Executive() = default;
+  ~Executive();
+  Executive(const Executive&) = delete;
+  Executive& operator=(const Executive&) = delete;
+
+  /// Starts the worker thread (lockstep/realtime). Objects must outlive the executive.
+  Status init(const ExecConfig& cfg, PlanComputer& planner, CommandLaw& law);
+  /// Stops and joins the worker thread.
+  void shutdown();
+
+  CycleOutput step(const NavInput& nav);
+
+  const ExecCounters& counters() const { return counters_; }
+  const ReferenceProfile& active_profile() const { return active_; }
+  bool has_profile() const { return has_profile_; }
+  /// Number of lockstep waits started (observable from another thread: test hook).
+  int waits_started() const { return waits_started_.load(std::memory_order_acquire); }
+
+ private:
+  struct PlanRequest {
+    std::uint64_t id = 0;
+    RelativeState from;
+  };
+  struct PlanResult {
+    std::uint64_t id = 0;
+    Status status = Status::kInvalidInput;
+    double compute_ms = 0.0;
+    ReferenceProfile profile;
+  };
+
+  static bool finite_state(const RelativeState& s);
+  void worker_loop();
+  void try_adopt(std::int64_t tick, double t_s, CycleOutput& out);
+  void adopt(PlanResult& r, double t_s, CycleOutput& out);
+  void request_plan(std::int64_t tick, const RelativeState& s);
+  bool pop_expected();
+  void finish_timing(std::int64_t t_start_ns);
+  double dt_s() const { return 1.0 / cfg_.gnc_rate_hz; }
+
+  ExecConfig cfg_;
+  PlanComputer* planner_ = nullptr;
+  CommandLaw* law_ = nullptr;
+  bool initialised_ = false;
+
+  // Cross-thread handoff.
+  SpscQueue<PlanRequest, 2> requests_;
+  SpscQueue<PlanResult, 2> results_;
+  std::thread worker_;
+  std::atomic<bool> stop_{false};
+  std::atomic<int> waits_started_{0};
+  PlanResult worker_result_;      // touched by the worker thread only
+
+  // Executive-thread state.
+  PlanResult pending_;            // result waiting for its adoption tick (lockstep/sync)
+  bool pending_ready_ = false;
+  PlanRequest request_buffer_;
+  std::uint64_t expected_id_ = 0;
+  std::int32_t sticky_flags_ = 0;  // planner failure (until the next good plan)
+  std::int32_t cycle_flags_ = 0;   // overrun / timeout of this cycle
+  bool in_flight_ = false;
+  std::uint64_t next_request_id_ = 1;
+  std::int64_t due_tick_ = 0;
+  std::int64_t request_tick_ = 0;
+  std::int64_t request_wall_ns_ = 0;
+  double last_request_t_s_ = -1.0;
+  int next_plan_seq_ = 1;
+  bool first_plan_requested_ = false;
+  bool replan_after_reversal_ = false;
+  Phase last_phase_ = Phase::kInitialDescent;
+
+  ReferenceProfile active_;
+  bool has_profile_ = false;
+
+  bool have_last_nav_ = false;
+  std::int64_t last_tick_ = 0;
+  double last_t_s_ = 0.0;
+  bool have_last_time_ = false;
+  ExecCounters counters_;
+  CycleOutput last_valid_;
+  double last_drag_err_ = 0.0;
+  double last_drag_ref_ = 0.0;
+};
+
+}  // namespace reentry::fsw::exec

@@ -1,0 +1,271 @@
+// Executive cycle: lockstep adoption at k + L, overrun accounting with an injected slow
+// planner, synchronous == lockstep, invalid navigation handling, tick accounting.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "exec/executive.hpp"
+
+namespace {
+
+using reentry::fsw::Phase;
+using reentry::fsw::ReferenceProfile;
+using reentry::fsw::RelativeState;
+using reentry::fsw::Status;
+using namespace reentry::fsw::exec;
+
+// Planner double: a two-point profile whose values encode the planning state, so the test
+// can see which state was planned from. Optionally blocks on a gate (slow planner).
+class GatedPlanner : public PlanComputer {
+ public:
+  std::atomic<bool> gate_open{true};
+  std::atomic<int> calls{0};
+  std::atomic<double> last_from_t_s{0.0};
+  std::atomic<double> last_from_energy{0.0};
+  Status compute(const RelativeState& from, ReferenceProfile& out) override {
+    for (long i = 0; i < 2000000000L && !gate_open.load(std::memory_order_acquire); ++i) {
+      std::this_thread::yield();
+    }
+    calls.fetch_add(1);
+    last_from_t_s.store(from.t_s);
+    last_from_energy.store(from.energy_Jpkg);
+    out.n_points = 2;
+    out.energy_Jpkg[0] = from.energy_Jpkg;
+    out.energy_Jpkg[1] = 0.0;
+    out.drag_mps2[0] = 10.0 + 1e-6 * from.energy_Jpkg;
+    out.sigma_rad[0] = 0.5 + 1e-3 * from.t_s;
+    out.status = Status::kOk;
+    return Status::kOk;
+  }
+};
+
+// Command-law double: holds alpha/sigma until a profile exists, then flies the profile's
+// first bank angle; reports a tracking drag error relative to the profile.
+class EchoLaw : public CommandLaw {
+ public:
+  ReferenceProfile profile;
+  int profiles_set = 0;
+  void set_profile(const ReferenceProfile& p) override {
+    profile = p;
+    ++profiles_set;
+  }
+  Status step(const RelativeState& s, double, bool has_profile, LawOutput& out) override {
+    out.alpha_rad = 0.7;
+    if (!has_profile) {
+      out.sigma_rad = 0.0;
+      out.phase = Phase::kInitialDescent;
+      return Status::kOk;
+    }
+    out.sigma_rad = profile.sigma_rad[0] + 1e-9 * s.energy_Jpkg;
+    out.phase = Phase::kTracking;
+    out.drag_ref_mps2 = profile.drag_mps2[0];
+    out.drag_err_mps2 = s.drag_mps2 - out.drag_ref_mps2;
+    return Status::kOk;
+  }
+};
+
+RelativeState state_at(std::int64_t tick, double dt) {
+  RelativeState s;
+  s.t_s = static_cast<double>(tick) * dt;
+  s.radius_m = 6.45e6;
+  s.altitude_m = 7.4e4;
+  s.velocity_mps = 7000.0 - 10.0 * s.t_s;
+  s.energy_Jpkg = 0.5 * s.velocity_mps * s.velocity_mps - 2.0e6;
+  s.drag_mps2 = 10.0;
+  s.flight_path_rad = -0.01;
+  return s;
+}
+
+NavInput nav_at(std::int64_t tick, double dt) {
+  NavInput n;
+  n.tick = tick;
+  n.state = state_at(tick, dt);
+  return n;
+}
+
+ExecConfig base_config(PlanMode mode, int latency) {
+  ExecConfig c;
+  c.gnc_rate_hz = 10.0;
+  c.plan_latency_ticks = latency;
+  c.replan_period_s = 2.0;
+  c.replan_drag_error_frac = 10.0;  // never triggered by the doubles
+  c.initial_descent_drag_mps2 = 0.0;
+  c.mode = mode;
+  return c;
+}
+
+TEST(Executive, LockstepAdoptsPlanExactlyAtTickKPlusL) {
+  GatedPlanner planner;
+  EchoLaw law;
+  auto exec = std::make_unique<Executive>();
+  ASSERT_EQ(exec->init(base_config(PlanMode::kLockstep, 3), planner, law), Status::kOk);
+  for (std::int64_t k = 0; k <= 6; ++k) {
+    const CycleOutput out = exec->step(nav_at(k, 0.1));
+    ASSERT_TRUE(out.emitted);
+    EXPECT_EQ(out.plan_adopted, k == 3) << "tick " << k;
+    EXPECT_EQ(out.plan_seq, k >= 3 ? 1 : 0) << "tick " << k;
+    EXPECT_EQ(out.phase, k >= 3 ? Phase::kTracking : Phase::kInitialDescent);
+  }
+  // (Whether the worker finished before tick 3 is wall-clock luck: overruns are not asserted here.)
+  EXPECT_EQ(exec->counters().plans_adopted, 1);
+  // Requested at tick 0, planned from the state predicted to tick 3: t = 0.3 s.
+  EXPECT_NEAR(planner.last_from_t_s.load(), 0.3, 1e-12);
+}
+
+TEST(Executive, PredictStateMatchesConstantDragKinematics) {
+  // Constant drag D: V(t) = V0 - D t, E(t) = E0 - D (V0 t - D t^2 / 2) (dE/dt = -D V).
+  RelativeState s = state_at(0, 0.1);
+  const double dt = 0.1;
+  const int n = 50;
+  const RelativeState p = predict_state(s, n, dt);
+  const double t = n * dt;
+  EXPECT_NEAR(p.velocity_mps, s.velocity_mps - s.drag_mps2 * t, 1e-9);
+  const double e_exact = s.energy_Jpkg - s.drag_mps2 * (s.velocity_mps * t - 0.5 * s.drag_mps2 * t * t);
+  // Forward Euler error bound: D^2 dt t / 2.
+  EXPECT_NEAR(p.energy_Jpkg, e_exact, 0.5 * s.drag_mps2 * s.drag_mps2 * dt * t + 1e-6);
+  EXPECT_NEAR(p.t_s, t, 1e-12);
+}
+
+TEST(Executive, SlowPlannerCountsOneOverrunAndStillAdoptsAtKPlusL) {
+  GatedPlanner planner;
+  planner.gate_open = false;
+  EchoLaw law;
+  auto exec = std::make_unique<Executive>();
+  ASSERT_EQ(exec->init(base_config(PlanMode::kLockstep, 2), planner, law), Status::kOk);
+  // The gate opens only once the executive has started waiting: the overrun is certain.
+  std::thread opener([&] {
+    while (exec->waits_started() < 1) std::this_thread::yield();
+    planner.gate_open = true;
+  });
+  for (std::int64_t k = 0; k <= 4; ++k) {
+    const CycleOutput out = exec->step(nav_at(k, 0.1));
+    EXPECT_EQ(out.plan_adopted, k == 2) << "tick " << k;
+    if (k == 2) {
+      EXPECT_NE(out.health_flags & kHealthPlanOverrun, 0);
+    }
+  }
+  opener.join();
+  EXPECT_EQ(exec->counters().plan_overruns, 1);
+  EXPECT_EQ(exec->counters().plan_timeouts, 0);
+  EXPECT_EQ(exec->counters().plans_adopted, 1);
+}
+
+TEST(Executive, PlanWaitIsBoundedAndTimeoutIsFlagged) {
+  GatedPlanner planner;
+  planner.gate_open = false;
+  EchoLaw law;
+  ExecConfig cfg = base_config(PlanMode::kLockstep, 1);
+  cfg.plan_wait_limit_s = 0.01;
+  auto exec = std::make_unique<Executive>();
+  ASSERT_EQ(exec->init(cfg, planner, law), Status::kOk);
+  exec->step(nav_at(0, 0.1));
+  const CycleOutput out = exec->step(nav_at(1, 0.1));
+  EXPECT_FALSE(out.plan_adopted);
+  EXPECT_NE(out.health_flags & kHealthPlanTimeout, 0);
+  EXPECT_EQ(exec->counters().plan_timeouts, 1);
+  planner.gate_open = true;
+  exec->shutdown();
+}
+
+std::vector<CycleOutput> fly(PlanMode mode, int n_ticks) {
+  GatedPlanner planner;
+  EchoLaw law;
+  auto exec = std::make_unique<Executive>();
+  std::vector<CycleOutput> outs;
+  if (exec->init(base_config(mode, 4), planner, law) != Status::kOk) return outs;
+  for (std::int64_t k = 0; k < n_ticks; ++k) outs.push_back(exec->step(nav_at(k, 0.1)));
+  return outs;
+}
+
+TEST(Executive, SynchronousModeReproducesLockstepBitForBit) {
+  const auto a = fly(PlanMode::kLockstep, 200);
+  const auto b = fly(PlanMode::kSynchronous, 200);
+  ASSERT_EQ(a.size(), 200u);
+  ASSERT_EQ(b.size(), 200u);
+  int adoptions = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(std::memcmp(&a[i].sigma_rad, &b[i].sigma_rad, sizeof(double)), 0) << "tick " << i;
+    EXPECT_EQ(std::memcmp(&a[i].alpha_rad, &b[i].alpha_rad, sizeof(double)), 0) << "tick " << i;
+    EXPECT_EQ(a[i].plan_seq, b[i].plan_seq) << "tick " << i;
+    adoptions += a[i].plan_adopted ? 1 : 0;
+  }
+  // Replan every 2 s over 20 s with a request at tick 0 -> 10 plans, the last one adopted.
+  EXPECT_EQ(adoptions, 10);
+}
+
+TEST(Executive, NonFiniteNavHoldsLastCommandFlagsAndRecovers) {
+  GatedPlanner planner;
+  EchoLaw law;
+  auto exec = std::make_unique<Executive>();
+  ASSERT_EQ(exec->init(base_config(PlanMode::kSynchronous, 1), planner, law), Status::kOk);
+  CycleOutput last;
+  for (std::int64_t k = 0; k < 5; ++k) last = exec->step(nav_at(k, 0.1));
+  NavInput bad = nav_at(5, 0.1);
+  bad.state.velocity_mps = std::numeric_limits<double>::quiet_NaN();
+  const CycleOutput held = exec->step(bad);
+  EXPECT_TRUE(held.emitted);
+  EXPECT_EQ(held.sigma_rad, last.sigma_rad);
+  EXPECT_EQ(held.alpha_rad, last.alpha_rad);
+  EXPECT_NE(held.health_flags & kHealthNavInvalid, 0);
+  NavInput inf = nav_at(6, 0.1);
+  inf.state.drag_mps2 = std::numeric_limits<double>::infinity();
+  EXPECT_NE(exec->step(inf).health_flags & kHealthNavInvalid, 0);
+  EXPECT_EQ(exec->counters().invalid_nav, 2);
+  const CycleOutput ok = exec->step(nav_at(7, 0.1));
+  EXPECT_EQ(ok.health_flags & kHealthNavInvalid, 0);
+  EXPECT_NE(ok.sigma_rad, last.sigma_rad);  // the law runs again on the new state
+  EXPECT_EQ(exec->counters().skipped_ticks, 0);
+}
+
+TEST(Executive, TimeGoingBackwardsIsRejected) {
+  GatedPlanner planner;
+  EchoLaw law;
+  auto exec = std::make_unique<Executive>();
+  ASSERT_EQ(exec->init(base_config(PlanMode::kSynchronous, 1), planner, law), Status::kOk);
+  exec->step(nav_at(0, 0.1));
+  const CycleOutput a = exec->step(nav_at(1, 0.1));
+  NavInput back = nav_at(2, 0.1);
+  back.state.t_s = 0.05;  // earlier than tick 1
+  const CycleOutput b = exec->step(back);
+  EXPECT_NE(b.health_flags & kHealthNavInvalid, 0);
+  EXPECT_EQ(b.sigma_rad, a.sigma_rad);
+  NavInput older_tick = nav_at(0, 0.1);
+  older_tick.state.t_s = 0.3;
+  EXPECT_NE(exec->step(older_tick).health_flags & kHealthNavInvalid, 0);
+  EXPECT_EQ(exec->counters().invalid_nav, 2);
+  EXPECT_EQ(exec->step(nav_at(3, 0.1)).health_flags & kHealthNavInvalid, 0);
+}
+
+TEST(Executive, DuplicateAndSkippedTicksAreCounted) {
+  GatedPlanner planner;
+  EchoLaw law;
+  auto exec = std::make_unique<Executive>();
+  ASSERT_EQ(exec->init(base_config(PlanMode::kSynchronous, 1), planner, law), Status::kOk);
+  EXPECT_TRUE(exec->step(nav_at(0, 0.1)).emitted);
+  EXPECT_TRUE(exec->step(nav_at(1, 0.1)).emitted);
+  EXPECT_FALSE(exec->step(nav_at(1, 0.1)).emitted);
+  EXPECT_TRUE(exec->step(nav_at(2, 0.1)).emitted);
+  EXPECT_TRUE(exec->step(nav_at(5, 0.1)).emitted);
+  EXPECT_EQ(exec->counters().duplicate_ticks, 1);
+  EXPECT_EQ(exec->counters().skipped_ticks, 2);
+  EXPECT_EQ(exec->counters().invalid_nav, 0);
+}
+
+TEST(Executive, RejectsInvalidConfiguration) {
+  GatedPlanner planner;
+  EchoLaw law;
+  auto exec = std::make_unique<Executive>();
+  ExecConfig c = base_config(PlanMode::kSynchronous, 0);
+  EXPECT_EQ(exec->init(c, planner, law), Status::kInvalidInput);
+  c = base_config(PlanMode::kSynchronous, 1);
+  c.gnc_rate_hz = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(exec->init(c, planner, law), Status::kInvalidInput);
+}
+
+}  // namespace

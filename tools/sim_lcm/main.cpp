@@ -1,0 +1,284 @@
+// reentry_sim_lcm: the truth simulator as an LCM process.
+//   publishes NAV_STATE (tick 0 at the entry interface) and TRUTH every GNC tick,
+//   lockstep: waits for the GUIDANCE_CMD of tick k (bounded) before advancing to tick k+1,
+//   realtime: paces itself with absolute deadlines and applies the newest command,
+//   applies commands after --transport-delay-ticks ticks, ends at an event with a
+//   RUN_CONTROL END_OF_RUN summary and (optionally) a JSON summary file.
+#include <lcm/lcm-cpp.hpp>
+#include <time.h>
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <reentry/guidance_cmd_t.hpp>
+#include <reentry/nav_state_t.hpp>
+#include <reentry/run_control_t.hpp>
+#include <reentry/truth_telemetry_t.hpp>
+#include <string>
+#include <vector>
+
+#include "app/lcm_codec.hpp"
+#include "dynamics/simulator.hpp"
+#include "reentry/config/mission.hpp"
+
+namespace {
+
+using reentry::fsw::app::decode_into;
+using reentry::fsw::app::encode_into;
+
+constexpr int kExitOk = 0;
+constexpr int kExitUsage = 2;
+constexpr int kExitLinkLoss = 3;
+
+struct CmdState {
+  reentry::guidance_cmd_t msg{};
+  reentry::guidance_cmd_t latest{};
+  bool have_latest = false;
+  std::int32_t bad = 0;
+};
+
+void on_cmd(const lcm::ReceiveBuffer* rbuf, const std::string&, CmdState* st) {
+  if (!decode_into(st->msg, rbuf->data, static_cast<int>(rbuf->data_size), st->bad)) return;
+  if (!st->have_latest || st->msg.tick >= st->latest.tick) {
+    st->latest = st->msg;
+    st->have_latest = true;
+  }
+}
+
+std::int64_t mono_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
+}
+
+void sleep_until_ns(std::int64_t t_ns) {
+  timespec ts{};
+  ts.tv_sec = t_ns / 1000000000LL;
+  ts.tv_nsec = t_ns % 1000000000LL;
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+  }
+}
+
+std::int8_t event_code(reentry::truth::SimEvent e) {
+  using reentry::truth::SimEvent;
+  switch (e) {
+    case SimEvent::kTaemEnergy: return reentry::run_control_t::EVENT_TAEM;
+    case SimEvent::kGroundImpact: return reentry::run_control_t::EVENT_GROUND;
+    case SimEvent::kSkipOut: return reentry::run_control_t::EVENT_SKIP_OUT;
+    case SimEvent::kTimeOut: return reentry::run_control_t::EVENT_TIMEOUT;
+    default: return reentry::run_control_t::EVENT_ABORT;
+  }
+}
+
+double wrap_pi(double a) {
+  while (a > M_PI) a -= 2.0 * M_PI;
+  while (a < -M_PI) a += 2.0 * M_PI;
+  return a;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App cli{"Truth simulator LCM process (SIL)"};
+  std::string mission_arg, mode = "lockstep", summary_path;
+  std::uint64_t seed = 0;
+  int transport_delay = -1;
+  double cmd_timeout_s = 10.0;
+  double progress_period_s = 10.0;
+  double stop_after_s = -1.0;
+  cli.add_option("--mission", mission_arg, "mission name or TOML file")->required();
+  cli.add_option("--seed", seed, "dispersion seed (0: nominal)");
+  cli.add_option("--mode", mode, "lockstep or realtime")->check(CLI::IsMember({"lockstep", "realtime"}));
+  cli.add_option("--transport-delay-ticks", transport_delay, "command transport delay (default: mission)");
+  cli.add_option("--cmd-timeout", cmd_timeout_s, "lockstep: seconds to wait for a command");
+  cli.add_option("--summary-json", summary_path, "write the end-of-run summary here");
+  cli.add_option("--progress-period", progress_period_s, "simulated seconds between progress lines");
+  cli.add_option("--stop-after", stop_after_s, "end the run (time-out event) after this simulated time");
+  CLI11_PARSE(cli, argc, argv);
+
+  const auto loaded = reentry::config::load_mission(mission_arg);
+  if (!loaded.ok) {
+    std::fprintf(stderr, "reentry_sim_lcm: %s\n", loaded.error.c_str());
+    return kExitUsage;
+  }
+  const auto& mission = loaded.mission;
+  reentry::truth::SimOverrides ov;
+  if (stop_after_s > 0.0) ov.time_limit_s = stop_after_s;
+  if (seed != 0) ov.dispersion = reentry::truth::draw_dispersions(mission.dispersions, seed);
+  std::string error;
+  auto sim = reentry::truth::Simulator::create(mission, ov, &error);
+  if (!sim) {
+    std::fprintf(stderr, "reentry_sim_lcm: %s\n", error.c_str());
+    return kExitUsage;
+  }
+  const int delay = transport_delay >= 0 ? transport_delay : mission.sim.transport_delay_ticks;
+  const double dt = 1.0 / mission.guidance.gnc_rate_hz;
+  const bool lockstep = mode == "lockstep";
+
+  lcm::LCM lcm;
+  if (!lcm.good()) {
+    std::fprintf(stderr, "reentry_sim_lcm: LCM initialisation failed\n");
+    return kExitUsage;
+  }
+  CmdState cmds;
+  lcm.subscribeFunction("GUIDANCE_CMD", &on_cmd, &cmds);
+
+  std::vector<std::uint8_t> buf(65000);
+  reentry::nav_state_t nav{};
+  reentry::truth_telemetry_t tel{};
+  // Commands waiting for the transport delay: cmd_fifo[k % n] is applied at tick k + delay.
+  std::vector<reentry::guidance_cmd_t> cmd_fifo(static_cast<std::size_t>(delay) + 1);
+  std::vector<bool> cmd_valid(static_cast<std::size_t>(delay) + 1, false);
+
+  const std::int64_t start_ns = mono_ns();
+  const std::int64_t period_ns = static_cast<std::int64_t>(std::llround(dt * 1e9));
+  int exit_code = kExitOk;
+  reentry::truth::SimEvent event = reentry::truth::SimEvent::kNone;
+  double next_progress_s = 0.0;
+  std::int64_t k = 0;
+  for (;; ++k) {
+    const auto ns = sim->nav_sample();
+    const auto ts = sim->sample();
+    nav.utime = std::llround(ns.t_s * 1e6);
+    nav.tick = k;
+    nav.t_s = ns.t_s;
+    for (int i = 0; i < 3; ++i) {
+      nav.position_I_m[i] = ns.r_I_m[i];
+      nav.velocity_I_mps[i] = ns.v_I_mps[i];
+      nav.aero_accel_I_mps2[i] = ns.aero_accel_I_mps2[i];
+    }
+    nav.earth_rotation_angle_rad = ns.earth_rotation_angle_rad;
+    nav.sim_flags = 0;
+    tel.utime = nav.utime;
+    tel.tick = k;
+    tel.t_s = ts.t_s;
+    tel.altitude_m = ts.h_m;
+    tel.latitude_rad = ts.lat_rad;
+    tel.longitude_rad = ts.lon_rad;
+    tel.velocity_mps = ts.V_mps;
+    tel.gamma_rad = ts.gamma_rad;
+    tel.heading_rad = ts.chi_rad;
+    tel.mach = ts.mach;
+    tel.q_Pa = ts.q_Pa;
+    tel.heat_flux_Wpm2 = ts.qdot_Wpm2;
+    tel.heat_load_Jpm2 = ts.Q_Jpm2;
+    tel.load_factor_g = ts.n_g;
+    tel.drag_mps2 = ts.D_mps2;
+    tel.lift_mps2 = ts.L_mps2;
+    tel.energy_Jpkg = ts.E_Jpkg;
+    tel.alpha_rad = ts.alpha_rad;
+    tel.sigma_rad = ts.sigma_rad;
+    tel.range_to_taem_m = ts.range_to_taem_m;
+    tel.heading_to_taem_rad = ts.heading_to_taem_rad;
+    int n = encode_into(tel, buf.data(), static_cast<int>(buf.size()));
+    if (n > 0) lcm.publish("TRUTH", buf.data(), static_cast<unsigned>(n));
+    if (ts.t_s >= next_progress_s) {
+      std::printf("progress t_s=%.1f alt_km=%.2f mach=%.2f dtg_km=%.1f\n", ts.t_s, ts.h_m * 1e-3, ts.mach,
+                  ts.range_to_taem_m * 1e-3);
+      std::fflush(stdout);
+      next_progress_s += progress_period_s;
+    }
+    if (event != reentry::truth::SimEvent::kNone) break;
+    n = encode_into(nav, buf.data(), static_cast<int>(buf.size()));
+    if (n > 0) lcm.publish("NAV_STATE", buf.data(), static_cast<unsigned>(n));
+
+    // Collect the command answering tick k.
+    if (lockstep) {
+      const std::int64_t deadline = mono_ns() + static_cast<std::int64_t>(cmd_timeout_s * 1e9);
+      std::int64_t republish_ns = mono_ns() + 200000000LL;
+      while (!(cmds.have_latest && cmds.latest.tick >= k)) {
+        const std::int64_t left_ms = (deadline - mono_ns()) / 1000000;
+        if (left_ms <= 0) break;
+        lcm.handleTimeout(static_cast<int>(left_ms > 100 ? 100 : left_ms));
+        if (mono_ns() > republish_ns) {  // a late subscriber may have missed it: repeat
+          lcm.publish("NAV_STATE", buf.data(), static_cast<unsigned>(n));
+          republish_ns += 200000000LL;
+        }
+      }
+      if (!(cmds.have_latest && cmds.latest.tick >= k)) {
+        std::fprintf(stderr, "reentry_sim_lcm: no command for tick %lld within %.1f s\n",
+                     static_cast<long long>(k), cmd_timeout_s);
+        exit_code = kExitLinkLoss;
+        event = reentry::truth::SimEvent::kFailure;
+        break;
+      }
+    } else {
+      sleep_until_ns(start_ns + (k + 1) * period_ns);
+      while (lcm.handleTimeout(0) > 0) {
+      }
+    }
+    const std::size_t slot = static_cast<std::size_t>(k % (delay + 1));
+    cmd_fifo[slot] = cmds.latest;
+    cmd_valid[slot] = cmds.have_latest;
+    const std::size_t apply = static_cast<std::size_t>((k + 1) % (delay + 1));  // = tick k - delay
+    const std::size_t use = delay == 0 ? slot : apply;
+    if (cmd_valid[use]) sim->set_command(cmd_fifo[use].alpha_rad, cmd_fifo[use].sigma_rad);
+    event = sim->advance_to(static_cast<double>(k + 1) * dt);
+  }
+
+  const auto summary = sim->summary();
+  const auto& f = summary.final_state;
+  reentry::run_control_t rc{};
+  rc.utime = std::llround(f.t_s * 1e6);
+  rc.tick = k;
+  rc.command = reentry::run_control_t::END_OF_RUN;
+  rc.event = exit_code == kExitOk ? event_code(summary.event) : reentry::run_control_t::EVENT_ABORT;
+  rc.final_altitude_m = f.h_m;
+  rc.final_velocity_mps = f.V_mps;
+  rc.final_mach = f.mach;
+  rc.final_gamma_rad = f.gamma_rad;
+  rc.final_heading_rad = f.chi_rad;
+  rc.final_latitude_rad = f.lat_rad;
+  rc.final_longitude_rad = f.lon_rad;
+  rc.taem_miss_m = f.range_to_taem_m;
+  rc.heading_err_rad = wrap_pi(f.chi_rad - mission.taem.heading_rad);
+  rc.max_heat_flux_Wpm2 = summary.maxima.qdot_Wpm2;
+  rc.heat_load_Jpm2 = f.Q_Jpm2;
+  rc.max_load_factor_g = summary.maxima.n_g;
+  rc.max_q_Pa = summary.maxima.q_Pa;
+  rc.max_q_alpha_Pa_rad = summary.maxima.q_alpha_Pa_rad;
+  rc.flight_time_s = f.t_s;
+  const int n = encode_into(rc, buf.data(), static_cast<int>(buf.size()));
+  for (int i = 0; i < 3 && n > 0; ++i) lcm.publish("RUN_CONTROL", buf.data(), static_cast<unsigned>(n));
+
+  if (!summary_path.empty()) {
+    const auto& c = mission.constraints;
+    const auto& taem = mission.taem;
+    nlohmann::json j;
+    nlohmann::json violations = nlohmann::json::array();
+    if (summary.maxima.qdot_Wpm2 > c.heat_flux_max_Wpm2) violations.push_back("heat_flux");
+    if (f.Q_Jpm2 > c.heat_load_max_Jpm2) violations.push_back("heat_load");
+    if (summary.maxima.n_g > c.load_factor_max_g) violations.push_back("load_factor");
+    if (summary.maxima.q_Pa > c.dynamic_pressure_max_Pa) violations.push_back("dynamic_pressure");
+    if (summary.maxima.q_alpha_Pa_rad > c.q_alpha_max_Pa_rad) violations.push_back("q_alpha");
+    const bool taem_event = summary.event == reentry::truth::SimEvent::kTaemEnergy;
+    const bool miss_ok = f.range_to_taem_m <= taem.range_tol_m;
+    const bool alt_ok = std::fabs(f.h_m - taem.altitude_m) <= taem.altitude_tol_m;
+    const bool heading_ok = std::fabs(rc.heading_err_rad) <= taem.heading_tol_rad;
+    j["mission"] = mission.name;
+    j["event"] = exit_code == kExitOk ? reentry::truth::to_string(summary.event) : "link_loss";
+    j["success"] = exit_code == kExitOk && taem_event && miss_ok && alt_ok && heading_ok && violations.empty();
+    j["taem_miss_km"] = f.range_to_taem_m * 1e-3;
+    j["final_alt_km"] = f.h_m * 1e-3;
+    j["final_mach"] = f.mach;
+    j["final_gamma_deg"] = f.gamma_rad * 180.0 / M_PI;
+    j["heading_err_deg"] = rc.heading_err_rad * 180.0 / M_PI;
+    j["max_heat_flux_kW_m2"] = summary.maxima.qdot_Wpm2 * 1e-3;
+    j["heat_load_MJ_m2"] = f.Q_Jpm2 * 1e-6;
+    j["max_g"] = summary.maxima.n_g;
+    j["max_q_kPa"] = summary.maxima.q_Pa * 1e-3;
+    j["max_q_alpha_kPa_deg"] = summary.maxima.q_alpha_Pa_rad * 1e-3 * 180.0 / M_PI;
+    j["violations"] = violations;
+    j["flight_time_s"] = f.t_s;
+    j["ticks"] = k;
+    j["bad_messages"] = cmds.bad;
+    std::ofstream(summary_path) << j.dump(2) << "\n";
+  }
+  std::printf("end event=%s t_s=%.1f alt_km=%.2f mach=%.2f dtg_km=%.1f\n",
+              exit_code == kExitOk ? reentry::truth::to_string(summary.event) : "link_loss", f.t_s,
+              f.h_m * 1e-3, f.mach, f.range_to_taem_m * 1e-3);
+  return exit_code;
+}
