@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -22,6 +23,7 @@
 
 #include "app/lcm_codec.hpp"
 #include "dynamics/simulator.hpp"
+#include "evaluation/mission_verdict.hpp"
 #include "reentry/config/mission.hpp"
 
 namespace {
@@ -73,11 +75,6 @@ std::int8_t event_code(reentry::truth::SimEvent e) {
   }
 }
 
-double wrap_pi(double a) {
-  while (a > M_PI) a -= 2.0 * M_PI;
-  while (a < -M_PI) a += 2.0 * M_PI;
-  return a;
-}
 
 }  // namespace
 
@@ -131,6 +128,9 @@ int main(int argc, char** argv) {
   reentry::truth_telemetry_t tel{};
   // Commands waiting for the transport delay: cmd_fifo[k % n] is applied at tick k + delay.
   std::vector<reentry::guidance_cmd_t> cmd_fifo(static_cast<std::size_t>(delay) + 1);
+  reentry::truth::CommandRateMaxima rates;
+  double applied_alpha = 0.0, applied_sigma = 0.0;
+  bool have_applied = false;
   std::vector<bool> cmd_valid(static_cast<std::size_t>(delay) + 1, false);
 
   const std::int64_t start_ns = mono_ns();
@@ -215,7 +215,17 @@ int main(int argc, char** argv) {
     cmd_valid[slot] = cmds.have_latest;
     const std::size_t apply = static_cast<std::size_t>((k + 1) % (delay + 1));  // = tick k - delay
     const std::size_t use = delay == 0 ? slot : apply;
-    if (cmd_valid[use]) sim->set_command(cmd_fifo[use].alpha_rad, cmd_fifo[use].sigma_rad);
+    if (cmd_valid[use]) {
+      const auto& c = cmd_fifo[use];
+      if (have_applied) {  // control-constraint check on the applied command rates
+        rates.alpha_rate_radps = std::max(rates.alpha_rate_radps, std::fabs(c.alpha_rad - applied_alpha) / dt);
+        rates.sigma_rate_radps = std::max(rates.sigma_rate_radps, std::fabs(c.sigma_rad - applied_sigma) / dt);
+      }
+      applied_alpha = c.alpha_rad;
+      applied_sigma = c.sigma_rad;
+      have_applied = true;
+      sim->set_command(c.alpha_rad, c.sigma_rad);
+    }
     event = sim->advance_to(static_cast<double>(k + 1) * dt);
   }
 
@@ -234,7 +244,7 @@ int main(int argc, char** argv) {
   rc.final_latitude_rad = f.lat_rad;
   rc.final_longitude_rad = f.lon_rad;
   rc.taem_miss_m = f.range_to_taem_m;
-  rc.heading_err_rad = wrap_pi(f.chi_rad - mission.taem.heading_rad);
+  rc.heading_err_rad = reentry::truth::wrap_pi(f.chi_rad - mission.taem.heading_rad);
   rc.max_heat_flux_Wpm2 = summary.maxima.qdot_Wpm2;
   rc.heat_load_Jpm2 = f.Q_Jpm2;
   rc.max_load_factor_g = summary.maxima.n_g;
@@ -245,27 +255,19 @@ int main(int argc, char** argv) {
   for (int i = 0; i < 3 && n > 0; ++i) lcm.publish("RUN_CONTROL", buf.data(), static_cast<unsigned>(n));
 
   if (!summary_path.empty()) {
-    const auto& c = mission.constraints;
-    const auto& taem = mission.taem;
     nlohmann::json j;
-    nlohmann::json violations = nlohmann::json::array();
-    if (summary.maxima.qdot_Wpm2 > c.heat_flux_max_Wpm2) violations.push_back("heat_flux");
-    if (f.Q_Jpm2 > c.heat_load_max_Jpm2) violations.push_back("heat_load");
-    if (summary.maxima.n_g > c.load_factor_max_g) violations.push_back("load_factor");
-    if (summary.maxima.q_Pa > c.dynamic_pressure_max_Pa) violations.push_back("dynamic_pressure");
-    if (summary.maxima.q_alpha_Pa_rad > c.q_alpha_max_Pa_rad) violations.push_back("q_alpha");
-    const bool taem_event = summary.event == reentry::truth::SimEvent::kTaemEnergy;
-    const bool miss_ok = f.range_to_taem_m <= taem.range_tol_m;
-    const bool alt_ok = std::fabs(f.h_m - taem.altitude_m) <= taem.altitude_tol_m;
-    const bool heading_ok = std::fabs(rc.heading_err_rad) <= taem.heading_tol_rad;
+    const reentry::truth::MissionVerdict verdict = reentry::truth::judge_mission(mission, summary, rates);
+    nlohmann::json violations = verdict.violations;
     j["mission"] = mission.name;
     j["event"] = exit_code == kExitOk ? reentry::truth::to_string(summary.event) : "link_loss";
-    j["success"] = exit_code == kExitOk && taem_event && miss_ok && alt_ok && heading_ok && violations.empty();
+    j["success"] = exit_code == kExitOk && verdict.success;
     j["taem_miss_km"] = f.range_to_taem_m * 1e-3;
     j["final_alt_km"] = f.h_m * 1e-3;
     j["final_mach"] = f.mach;
     j["final_gamma_deg"] = f.gamma_rad * 180.0 / M_PI;
-    j["heading_err_deg"] = rc.heading_err_rad * 180.0 / M_PI;
+    j["heading_err_deg"] = verdict.heading_err_rad * 180.0 / M_PI;
+    j["max_alpha_rate_deg_s"] = rates.alpha_rate_radps * 180.0 / M_PI;
+    j["max_sigma_rate_deg_s"] = rates.sigma_rate_radps * 180.0 / M_PI;
     j["max_heat_flux_kW_m2"] = summary.maxima.qdot_Wpm2 * 1e-3;
     j["heat_load_MJ_m2"] = f.Q_Jpm2 * 1e-6;
     j["max_g"] = summary.maxima.n_g;
@@ -275,6 +277,17 @@ int main(int argc, char** argv) {
     j["flight_time_s"] = f.t_s;
     j["ticks"] = k;
     j["bad_messages"] = cmds.bad;
+    // Context for the plots (tools/plot): aim point, heading-alignment circle, limits.
+    j["taem_lat_deg"] = mission.taem.latitude_rad * 180.0 / M_PI;
+    j["taem_lon_deg"] = mission.taem.longitude_rad * 180.0 / M_PI;
+    j["taem_heading_deg"] = mission.taem.heading_rad * 180.0 / M_PI;
+    j["hac_radius_km"] = mission.taem.hac_radius_m * 1e-3;
+    j["entry_energy_Jpkg"] = sim->entry_energy_Jpkg();
+    j["taem_energy_Jpkg"] = sim->taem_energy_Jpkg();
+    const auto& lim = mission.constraints;
+    if (std::isfinite(lim.heat_flux_max_Wpm2)) j["limit_heat_flux_kW_m2"] = lim.heat_flux_max_Wpm2 * 1e-3;
+    if (std::isfinite(lim.load_factor_max_g)) j["limit_g"] = lim.load_factor_max_g;
+    if (std::isfinite(lim.dynamic_pressure_max_Pa)) j["limit_q_kPa"] = lim.dynamic_pressure_max_Pa * 1e-3;
     std::ofstream(summary_path) << j.dump(2) << "\n";
   }
   std::printf("end event=%s t_s=%.1f alt_km=%.2f mach=%.2f dtg_km=%.1f\n",

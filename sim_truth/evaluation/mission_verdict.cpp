@@ -1,0 +1,59 @@
+#include "evaluation/mission_verdict.hpp"
+
+#include <cmath>
+
+namespace reentry::truth {
+
+double wrap_pi(double angle_rad) {
+  const double two_pi = 2.0 * M_PI;
+  double a = std::fmod(angle_rad, two_pi);
+  if (a <= -M_PI) a += two_pi;
+  if (a > M_PI) a -= two_pi;
+  return a;
+}
+
+namespace {
+void check_max(std::vector<std::string>& v, const char* name, double value, double limit) {
+  if (std::isfinite(limit) && value > limit * (1.0 + kConstraintSlack)) v.emplace_back(name);
+}
+}  // namespace
+
+MissionVerdict judge_mission(const config::Mission& mission, const RunSummary& summary,
+                             const CommandRateMaxima& rates) {
+  MissionVerdict v;
+  const auto& f = summary.final_state;
+  const auto& c = mission.constraints;
+  const auto& taem = mission.taem;
+
+  // Path constraints (thesis 3.1-3.7) and control constraints (alpha/sigma rates).
+  check_max(v.violations, "heat_flux", summary.maxima.qdot_Wpm2, c.heat_flux_max_Wpm2);
+  check_max(v.violations, "heat_load", f.Q_Jpm2, c.heat_load_max_Jpm2);
+  check_max(v.violations, "load_factor", summary.maxima.n_g, c.load_factor_max_g);
+  check_max(v.violations, "dynamic_pressure", summary.maxima.q_Pa, c.dynamic_pressure_max_Pa);
+  check_max(v.violations, "q_alpha", summary.maxima.q_alpha_Pa_rad, c.q_alpha_max_Pa_rad);
+  check_max(v.violations, "alpha_rate", rates.alpha_rate_radps, c.alpha_rate_max_radps);
+  check_max(v.violations, "sigma_rate", rates.sigma_rate_radps, c.sigma_rate_max_radps);
+
+  // TAEM interface conditions (thesis 3.1.2).
+  v.reached_taem = summary.event == SimEvent::kTaemEnergy;
+  if (!v.reached_taem) v.violations.emplace_back(std::string("event_") + to_string(summary.event));
+  v.taem_miss_m = f.range_to_taem_m;
+  v.altitude_err_m = f.h_m - taem.altitude_m;
+  v.mach = f.mach;
+  v.heading_err_rad = wrap_pi(f.chi_rad - taem.heading_rad);
+  if (v.taem_miss_m > taem.range_tol_m) v.violations.emplace_back("taem_range");
+  if (std::fabs(v.altitude_err_m) > taem.altitude_tol_m) v.violations.emplace_back("taem_altitude");
+  if (std::fabs(v.heading_err_rad) > taem.heading_tol_rad) v.violations.emplace_back("taem_heading");
+  if (taem.mach_target > 0.0) {
+    v.mach_err = f.mach - taem.mach_target;
+    if (std::fabs(v.mach_err) > taem.mach_tol) v.violations.emplace_back("taem_mach");
+  }
+  if (std::isfinite(taem.flight_path_tol_rad)) {
+    v.flight_path_err_rad = f.gamma_rad - taem.flight_path_rad;
+    if (std::fabs(v.flight_path_err_rad) > taem.flight_path_tol_rad) v.violations.emplace_back("taem_flight_path");
+  }
+  v.success = v.violations.empty();
+  return v;
+}
+
+}  // namespace reentry::truth

@@ -1,0 +1,42 @@
+// The referee's verdict on one flown mission: did the vehicle reach the TAEM interface
+// within the mission's tolerances without exceeding a path or control constraint?
+// One definition, used by the LCM simulator process (tools/sil) and the in-process
+// Monte Carlo runner (tools/mc), so both judge a run the same way.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "dynamics/simulator.hpp"
+#include "reentry/config/mission.hpp"
+
+namespace reentry::truth {
+
+/// Command-rate maxima seen by the runner (from successive applied commands).
+struct CommandRateMaxima {
+  double alpha_rate_radps = 0.0;
+  double sigma_rate_radps = 0.0;
+};
+
+struct MissionVerdict {
+  bool success = false;
+  bool reached_taem = false;        // the TAEM energy event ended the run
+  double taem_miss_m = 0.0;         // great-circle distance to the aim point at the event
+  double altitude_err_m = 0.0;      // final altitude - TAEM altitude
+  double mach = 0.0;
+  double mach_err = 0.0;            // final Mach - target (0 when no target)
+  double flight_path_err_rad = 0.0; // final gamma - TAEM gamma (0 when not constrained)
+  double heading_err_rad = 0.0;     // final heading - required TAEM heading, wrapped to (-pi, pi]
+  std::vector<std::string> violations;  // names of violated constraints / tolerances
+};
+
+/// Relative tolerance on path-constraint maxima (a limit met exactly is not a violation).
+inline constexpr double kConstraintSlack = 1e-9;
+
+MissionVerdict judge_mission(const config::Mission& mission, const RunSummary& summary,
+                             const CommandRateMaxima& rates);
+
+/// Wrap an angle to (-pi, pi].
+double wrap_pi(double angle_rad);
+
+}  // namespace reentry::truth
