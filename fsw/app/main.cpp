@@ -8,42 +8,13 @@
 #include <string>
 
 #include "app/guidance_node.hpp"
-#include "filter/rate_filter.hpp"
+#include "guidance/guidance_stack.hpp"
 #include "nav/relative_state.hpp"
-#include "planner/entry_planner.hpp"
 #include "reentry/config/mission.hpp"
-#include "tracker/entry_tracker.hpp"
 
 namespace {
 
 using namespace reentry::fsw;
-
-class PlannerAdapter : public exec::PlanComputer {
- public:
-  EntryPlanner planner;
-  Status compute(const RelativeState& from, ReferenceProfile& out) override { return planner.plan(from, out); }
-};
-
-// Tracker followed by the alpha and sigma rate filters.
-class TrackerLaw : public exec::CommandLaw {
- public:
-  EntryTracker tracker;
-  RateFilter alpha_filter;
-  RateFilter sigma_filter;
-  void set_profile(const ReferenceProfile& profile) override { tracker.set_profile(profile); }
-  Status step(const RelativeState& s, double dt_s, bool, exec::LawOutput& out) override {
-    TrackerOutput t;
-    const Status st = tracker.step(s, dt_s, t);
-    if (st != Status::kOk) return st;
-    out.alpha_rad = alpha_filter.step(t.alpha_rad);
-    out.sigma_rad = sigma_filter.step(t.sigma_rad);
-    out.phase = t.phase;
-    out.drag_ref_mps2 = t.drag_ref_mps2;
-    out.drag_err_mps2 = t.drag_err_mps2;
-    out.heading_err_rad = t.heading_err_rad;
-    return Status::kOk;
-  }
-};
 
 Status convert_nav(const reentry::nav_state_t& nav, RelativeState& out, void*) {
   return relative_state_from_nav(nav.t_s, nav.position_I_m, nav.velocity_I_mps, nav.aero_accel_I_mps2,
@@ -71,31 +42,17 @@ int main(int argc, char** argv) {
     return app::kExitUsage;
   }
   const auto& m = loaded.mission;
-  const double dt_s = 1.0 / m.guidance.gnc_rate_hz;
-  auto planner = std::make_unique<PlannerAdapter>();
-  auto law = std::make_unique<TrackerLaw>();
-  if (planner->planner.init(m) != Status::kOk || law->tracker.init(m) != Status::kOk ||
-      law->alpha_filter.init(m.constraints.alpha_rate_max_radps, m.constraints.alpha_accel_max_radps2, dt_s) !=
-          Status::kOk ||
-      law->sigma_filter.init(m.constraints.sigma_rate_max_radps, m.constraints.sigma_accel_max_radps2, dt_s) !=
-          Status::kOk) {
-    std::fprintf(stderr, "reentry_fsw: component initialisation failed for mission %s\n", m.name.c_str());
+  const exec::PlanMode plan_mode = !replay.empty()       ? exec::PlanMode::kSynchronous
+                                   : mode == "realtime" ? exec::PlanMode::kRealtime
+                                                        : exec::PlanMode::kLockstep;
+  GuidanceStack stack;
+  const std::string err = stack.create(m, plan_mode);
+  if (!err.empty()) {
+    std::fprintf(stderr, "reentry_fsw: mission %s: %s\n", m.name.c_str(), err.c_str());
     return app::kExitUsage;
   }
-  exec::ExecConfig cfg;
-  cfg.gnc_rate_hz = m.guidance.gnc_rate_hz;
-  cfg.plan_latency_ticks = m.guidance.plan_latency_ticks;
-  cfg.replan_period_s = m.guidance.replan_period_s;
-  cfg.replan_drag_error_frac = m.guidance.replan_drag_error_frac;
-  cfg.initial_descent_drag_mps2 = m.guidance.initial_descent_drag_mps2;
-  cfg.mode = !replay.empty() ? exec::PlanMode::kSynchronous
-             : mode == "realtime" ? exec::PlanMode::kRealtime
-                                  : exec::PlanMode::kLockstep;
-  auto executive = std::make_unique<exec::Executive>();
-  if (executive->init(cfg, *planner, *law) != Status::kOk) {
-    std::fprintf(stderr, "reentry_fsw: invalid guidance timing parameters\n");
-    return app::kExitUsage;
-  }
+  auto& executive = stack.executive;
+  const auto& cfg = stack.config;
   auto node = std::make_unique<app::GuidanceNode>(*executive, &convert_nav, nullptr, cfg.gnc_rate_hz);
   int rc = app::kExitOk;
   if (!replay.empty()) {

@@ -1,0 +1,104 @@
+// Drag and heading tracker after EAGLE (thesis §3.2.3, Saraf et al. 2003, Tu et al. 2000).
+//
+//   drag loop    (3.12)  e'' + c_E e' + k_E e + k_I int e dt = 0, e = D - D_ref, in energy
+//                        with the time-domain zeta/omega converted by (3.14)-(3.18) and the
+//                        natural frequency scheduled on dynamic pressure (3.13);
+//                        D'' = a + b u_D (3.10) gives u_D = (L/D) cos(sigma), sigma_D (3.20);
+//   heading loop (3.19)  chi' error dynamics through (3.11) gives u_chi, sigma_chi (3.21);
+//   blending     (3.22)  sigma = w(E) sign(sigma_ref) sigma_D + (1 - w(E)) sigma_chi;
+//   reversal             sign changes of the reference are flown open loop at the maximum
+//                        bank rate (the rate filter after the tracker limits the rate), with
+//                        the drag integrator frozen.
+// Before the first plan, and until the sensed drag passes the initial-descent threshold,
+// the tracker holds the profile alpha and wings level (flight practice, DESIGN §6).
+// Gains are derived from vehicle-independent physics (see derive_gains) unless the mission
+// overrides them. No heap, no exceptions, bounded loops.
+#pragma once
+
+#include "guidance_types.hpp"
+#include "models/onboard_models.hpp"
+
+namespace reentry::config {
+struct Mission;
+}
+
+namespace reentry::fsw {
+
+struct TrackerGains {
+  double zeta = 0.7071067811865476;     // time-domain damping ratio of the drag loop
+  double omega0_radps = 0.0;            // time-domain natural frequency at q = q_ref
+  double k_integral = 0.0;              // time-domain integral gain [1/s^3]
+  double k_heading = 0.0;               // heading loop gain factor k2 of (3.19)
+  double k_heading_integral = 0.0;      // k3 of (3.19)
+  double blend_start_e_norm = 0.0;      // below this energy the heading loop is blended in
+  double blend_min_weight = 1.0;        // w(E) at the TAEM energy
+};
+
+struct TrackerOutput {
+  double alpha_rad = 0.0;
+  double sigma_rad = 0.0;
+  Phase phase = Phase::kInitialDescent;
+  double drag_ref_mps2 = 0.0;
+  double drag_err_mps2 = 0.0;      // D - D_ref
+  double heading_err_rad = 0.0;    // chi - chi_ref
+  double sigma_d_rad = 0.0;        // drag-loop bank magnitude (3.20)
+  double sigma_chi_rad = 0.0;      // heading-loop bank (3.21)
+  double u_drag = 0.0;             // commanded vertical L/D
+  bool saturated = false;          // |u| exceeded the available L/D
+};
+
+/// The documented gain rule (no per-vehicle tuning):
+///  - omega0 = 2 sqrt(g0 / H), twice the natural frequency sqrt(g/H) of the altitude mode of a
+///    glide in an atmosphere of scale height H = 7050 m (about 0.075 rad/s, period 85 s): fast
+///    enough to reject density errors, slow against the GNC rate and the bank-rate limit;
+///  - zeta = 1/sqrt(2) (no resonance peak, thesis §8.3);
+///  - integral gain omega0^3 / 20 (integral pole a decade below the loop);
+///  - heading loop k2 = 1 with the scheduled omega, k3 = 0;
+///  - blending of the heading loop over the last 15 % of the energy span, down to w = 0.8.
+/// Non-zero mission values (guidance.zeta, omega0_radps, ...) override the rule.
+TrackerGains derive_gains(const config::Mission& mission);
+
+class EntryTracker {
+ public:
+  Status init(const config::Mission& mission);
+  /// Copies the profile (no allocation); resets the integrators when the sequence changes.
+  void set_profile(const ReferenceProfile& profile);
+  bool has_profile() const { return has_profile_; }
+  Status step(const RelativeState& s, double dt_s, TrackerOutput& out);
+
+  const TrackerGains& gains() const { return gains_; }
+  const ReferenceProfile& profile() const { return profile_; }
+
+  /// omega(q) of (3.13): omega0 [2 (q/q_ref) - (q/q_ref)^2] below q_ref, omega0 above.
+  static double scheduled_omega(double omega0, double q_Pa, double q_ref_Pa);
+
+ private:
+  struct RefPoint {
+    double drag = 0, drag_prime = 0, drag_second = 0, a = 0, b = 0, gamma = 0, alpha = 0;
+    double lod = 0, sigma = 0, heading = 0, heading_prime = 0, q = 0, velocity = 0, radius = 0;
+  };
+  RefPoint reference_at(double energy_Jpkg);
+  double blend_weight(double e_norm) const;
+
+  OnboardModels models_;
+  AlphaProfile alpha_profile_;
+  TrackerGains gains_;
+  double entry_energy_Jpkg_ = 0.0;
+  double taem_energy_Jpkg_ = 0.0;
+  double initial_descent_drag_mps2_ = 0.0;
+  double sigma_rate_max_radps_ = 0.0;
+  double alpha_max_rad_ = 0.0;
+  double q_ref_Pa_ = 1.0;
+  bool initialised_ = false;
+
+  ReferenceProfile profile_;
+  bool has_profile_ = false;
+  int hint_ = 0;
+  bool captured_ = false;           // initial descent over
+  double drag_integral_ = 0.0;      // int (D - D_ref) dt
+  double heading_integral_ = 0.0;   // int (chi_ref - chi) dE
+  int last_sign_ = 0;
+  double reversal_until_t_s_ = -1.0;
+};
+
+}  // namespace reentry::fsw
