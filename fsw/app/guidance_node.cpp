@@ -273,6 +273,8 @@ void GuidanceNode::write_status_json(const std::string& path) const {
   std::ofstream f(path);
   f << "{\n"
     << "  \"planner_runs\": " << c.planner_runs << ",\n"
+    << "  \"planner_failures\": " << c.planner_failures << ",\n"
+    << "  \"last_plan_status\": \"" << to_string(c.last_plan_status) << "\",\n"
     << "  \"planner_ms_max\": " << c.planner_ms_max << ",\n"
     << "  \"plan_overruns\": " << c.plan_overruns << ",\n"
     << "  \"plan_timeouts\": " << c.plan_timeouts << ",\n"

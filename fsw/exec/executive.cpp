@@ -114,6 +114,7 @@ void Executive::adopt(PlanResult& r, double t_s, CycleOutput& out) {
   ++counters_.planner_runs;
   counters_.planner_ms_last = r.compute_ms;
   if (r.compute_ms > counters_.planner_ms_max) counters_.planner_ms_max = r.compute_ms;
+  counters_.last_plan_status = r.status;
   if (r.status != Status::kOk) {
     ++counters_.planner_failures;
     sticky_flags_ |= kHealthPlannerFailed;

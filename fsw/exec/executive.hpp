@@ -96,6 +96,7 @@ struct ExecCounters {
   int plan_timeouts = 0;
   int planner_runs = 0;
   int planner_failures = 0;
+  Status last_plan_status = Status::kOk;  // status of the last completed plan
   double planner_ms_last = 0.0;
   double planner_ms_max = 0.0;
   double plan_latency_ms = 0.0;   // request to adoption, wall time
