@@ -9,6 +9,8 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <chrono>
+#include <thread>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -81,6 +83,9 @@ std::int8_t event_code(reentry::truth::SimEvent e) {
 int main(int argc, char** argv) {
   CLI::App cli{"Truth simulator LCM process (SIL)"};
   std::string mission_arg, mode = "lockstep", summary_path;
+  // Lockstep runs as fast as the two processes can ping-pong; on two cores the logger then
+  // loses the CPU and drops datagrams, and a log with holes cannot be replayed bit for bit.
+  int lockstep_pace_us = 100;
   std::uint64_t seed = 0;
   int transport_delay = -1;
   double cmd_timeout_s = 10.0;
@@ -91,6 +96,8 @@ int main(int argc, char** argv) {
   cli.add_option("--mode", mode, "lockstep or realtime")->check(CLI::IsMember({"lockstep", "realtime"}));
   cli.add_option("--transport-delay-ticks", transport_delay, "command transport delay (default: mission)");
   cli.add_option("--cmd-timeout", cmd_timeout_s, "lockstep: seconds to wait for a command");
+  cli.add_option("--lockstep-pace-us", lockstep_pace_us,
+                 "lockstep: pause after each command so lcm-logger keeps up on a loaded machine");
   cli.add_option("--summary-json", summary_path, "write the end-of-run summary here");
   cli.add_option("--progress-period", progress_period_s, "simulated seconds between progress lines");
   cli.add_option("--stop-after", stop_after_s, "end the run (time-out event) after this simulated time");
@@ -198,6 +205,7 @@ int main(int argc, char** argv) {
           republish_ns += 200000000LL;
         }
       }
+      if (lockstep_pace_us > 0) std::this_thread::sleep_for(std::chrono::microseconds(lockstep_pace_us));
       if (!(cmds.have_latest && cmds.latest.tick >= k)) {
         std::fprintf(stderr, "reentry_sim_lcm: no command for tick %lld within %.1f s\n",
                      static_cast<long long>(k), cmd_timeout_s);
