@@ -9,6 +9,11 @@ namespace {
 
 constexpr double kScaleHeight_m = 7050.0;   // exponential-atmosphere scale height (2.20)
 constexpr double kMinDrag_mps2 = 1e-3;      // below this L/D is not measurable
+// Terminal phase: last kTerminalSpanFraction of the entry-to-TAEM energy span, lateral
+// logic on a heading-to-aim-point corridor from kTerminalCorridorMax_rad down to _Min_rad.
+constexpr double kTerminalSpanFraction = 0.06;
+constexpr double kTerminalCorridorMax_rad = 10.0 * M_PI / 180.0;
+constexpr double kTerminalCorridorMin_rad = 3.0 * M_PI / 180.0;
 
 double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
 
@@ -68,6 +73,9 @@ Status EntryTracker::init(const config::Mission& mission) {
   if (!(entry_energy_Jpkg_ > taem_energy_Jpkg_)) return Status::kInvalidInput;
   const double e_taem_norm = taem_energy_Jpkg_ / entry_energy_Jpkg_;
   gains_.blend_start_e_norm = e_taem_norm + 0.15 * (1.0 - e_taem_norm);
+  terminal_e_norm_ = e_taem_norm + kTerminalSpanFraction * (1.0 - e_taem_norm);
+  aim_lat_rad_ = mission.taem.latitude_rad;
+  aim_lon_rad_ = mission.taem.longitude_rad;
   initial_descent_drag_mps2_ = mission.guidance.initial_descent_drag_mps2;
   sigma_rate_max_radps_ = mission.constraints.sigma_rate_max_radps;
   alpha_max_rad_ = mission.constraints.alpha_max_rad;
@@ -215,20 +223,38 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   const double sigma_chi = std::asin(clamp(u_chi / lod, -1.0, 1.0));         // (3.21)
 
   // Reversal: a sign change of the reference bank is flown open loop at the maximum rate.
-  const int sign_ref = ref.sigma >= 0.0 ? 1 : -1;
+  int sign_ref = ref.sigma >= 0.0 ? 1 : -1;
+  const bool terminal = e_norm < terminal_e_norm_;
+  if (terminal && last_sign_ != 0) {
+    // Terminal heading corridor: close to TAEM the bank sign turns the vehicle towards the
+    // aim point, reversing only when the heading error to it leaves a corridor that narrows
+    // towards the interface (Shuttle-style lateral logic; a planned reversal there would be
+    // an uncorrectable lift-up pulse just before the interface).
+    const double bearing = std::atan2(std::sin(aim_lon_rad_ - s.longitude_rad) * std::cos(aim_lat_rad_),
+                                      clat * std::sin(aim_lat_rad_) -
+                                          slat * std::cos(aim_lat_rad_) * std::cos(aim_lon_rad_ - s.longitude_rad));
+    const double err_to_aim = wrap_pi(chi - bearing);
+    const double e_taem_norm = taem_energy_Jpkg_ / entry_energy_Jpkg_;
+    const double x = clamp((e_norm - e_taem_norm) / (terminal_e_norm_ - e_taem_norm), 0.0, 1.0);
+    const double corridor = kTerminalCorridorMin_rad + (kTerminalCorridorMax_rad - kTerminalCorridorMin_rad) * x;
+    sign_ref = last_sign_;
+    if (err_to_aim > corridor) sign_ref = -1;        // heading right of the aim point: bank left
+    else if (err_to_aim < -corridor) sign_ref = 1;   // heading left of it: bank right
+    out.heading_err_rad = err_to_aim;
+  }
   if (last_sign_ != 0 && sign_ref != last_sign_) {
     reversal_until_t_s_ = s.t_s + 2.0 * sigma_d / sigma_rate_max_radps_ + dt_s;
   }
   last_sign_ = sign_ref;
 
-  const double w = reversing ? 1.0 : blend_weight(e_norm);
+  const double w = (reversing || terminal) ? 1.0 : blend_weight(e_norm);
   out.sigma_rad = w * sign_ref * sigma_d + (1.0 - w) * sigma_chi;            // (3.22)
   out.sigma_d_rad = sigma_d;
   out.sigma_chi_rad = sigma_chi;
   out.phase = s.t_s < reversal_until_t_s_ ? Phase::kReversal : Phase::kTracking;
   out.drag_ref_mps2 = ref.drag;
   out.drag_err_mps2 = err;
-  out.heading_err_rad = heading_err;
+  if (!terminal) out.heading_err_rad = heading_err;
   return Status::kOk;
 }
 

@@ -8,7 +8,9 @@
 //   blending     (3.22)  sigma = w(E) sign(sigma_ref) sigma_D + (1 - w(E)) sigma_chi;
 //   reversal             sign changes of the reference are flown open loop at the maximum
 //                        bank rate (the rate filter after the tracker limits the rate), with
-//                        the drag integrator frozen.
+//                        the drag integrator frozen;
+//   terminal phase       over the last 6 % of the energy span the bank sign follows a
+//                        heading-to-aim-point corridor instead of the planned reversal.
 // Before the first plan, and until the sensed drag passes the initial-descent threshold,
 // the tracker holds the profile alpha and wings level (flight practice, DESIGN §6).
 // Gains are derived from vehicle-independent physics (see derive_gains) unless the mission
@@ -89,6 +91,9 @@ class EntryTracker {
   double sigma_rate_max_radps_ = 0.0;
   double alpha_max_rad_ = 0.0;
   double q_ref_Pa_ = 1.0;
+  double terminal_e_norm_ = 0.0;    // terminal phase below this normalised energy
+  double aim_lat_rad_ = 0.0;        // TAEM aim point
+  double aim_lon_rad_ = 0.0;
   bool initialised_ = false;
 
   ReferenceProfile profile_;
