@@ -235,6 +235,18 @@ int GuidanceNode::run_replay(const std::string& log_path, bool compare) {
     std::fprintf(stderr, "reentry_fsw: no NAV_STATE messages in %s\n", log_path.c_str());
     return kExitUsage;
   }
+  // Lockstep replay needs every tick: a log with holes (lcm-logger starved of CPU drops
+  // datagrams) cannot reproduce the run, so say so instead of reporting a false difference.
+  const std::int64_t first = navs.begin()->first, last = navs.rbegin()->first;
+  const std::int64_t missing = (last - first + 1) - static_cast<std::int64_t>(navs.size());
+  if (missing > 0) {
+    std::int64_t gap = first;
+    while (navs.count(gap) != 0) ++gap;
+    std::printf("incomplete log: %lld of %lld NAV_STATE ticks missing (first at tick %lld); "
+                "replay needs every tick\n",
+                static_cast<long long>(missing), static_cast<long long>(last - first + 1), static_cast<long long>(gap));
+    return kExitLogIncomplete;
+  }
   std::int64_t compared = 0;
   bool adopted = false;
   for (const auto& [tick, n] : navs) {

@@ -22,6 +22,7 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitUsage = 2;
 inline constexpr int kExitLinkLoss = 3;
 inline constexpr int kExitReplayDiffers = 4;
+inline constexpr int kExitLogIncomplete = 5;
 
 /// Converts a navigation message into the Earth-relative state guidance works with.
 using NavConvertFn = Status (*)(const nav_state_t& nav, RelativeState& out, void* ctx);

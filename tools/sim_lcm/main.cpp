@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
   std::string mission_arg, mode = "lockstep", summary_path;
   // Lockstep runs as fast as the two processes can ping-pong; on two cores the logger then
   // loses the CPU and drops datagrams, and a log with holes cannot be replayed bit for bit.
-  int lockstep_pace_us = 100;
+  int lockstep_pace_us = 200;
   std::uint64_t seed = 0;
   int transport_delay = -1;
   double cmd_timeout_s = 10.0;
