@@ -10,6 +10,10 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <lcm/lcm-cpp.hpp>
+#include <reentry/nav_state_t.hpp>
+
+#include "nav/relative_state.hpp"
 #include <nlohmann/json.hpp>
 
 #include <reentry/config/mission.hpp>
@@ -41,6 +45,10 @@ int main(int argc, char** argv) {
   std::string mission_arg, profile_out, drag_profile, initial_drag;
   app.add_option("--mission", mission_arg, "mission name (x33, horus, ...) or path to a .toml file")->required();
   app.add_option("--profile-out", profile_out, "write the planned profile as CSV");
+  std::string from_log;
+  long long from_tick = -1;
+  app.add_option("--from-log", from_log, "plan from a logged NAV_STATE instead of the entry interface (with --tick)");
+  app.add_option("--tick", from_tick, "tick of the NAV_STATE in --from-log");
   app.add_option("--drag-profile", drag_profile, "three_segment or smooth (default: mission file)")
       ->check(CLI::IsMember({"three_segment", "smooth"}));
   app.add_option("--initial-drag", initial_drag, "actual or lmin (default: mission file)")
@@ -63,7 +71,26 @@ int main(int argc, char** argv) {
     return 2;
   }
   auto profile = std::make_unique<reentry::fsw::ReferenceProfile>();
-  const reentry::fsw::RelativeState entry = planner->entry_state();
+  reentry::fsw::RelativeState entry = planner->entry_state();
+  if (!from_log.empty()) {
+    lcm::LogFile log(from_log, "r");
+    bool found = false;
+    reentry::nav_state_t nav{};
+    for (const lcm::LogEvent* ev = log.good() ? log.readNextEvent() : nullptr; ev != nullptr && !found;
+         ev = log.readNextEvent()) {
+      if (ev->channel != "NAV_STATE" || nav.decode(ev->data, 0, ev->datalen) < 0) continue;
+      found = nav.tick == from_tick;
+    }
+    if (!found) {
+      std::fprintf(stderr, "reentry_plan: no NAV_STATE with tick %lld in %s\n", from_tick, from_log.c_str());
+      return 2;
+    }
+    if (reentry::fsw::relative_state_from_nav(nav.t_s, nav.position_I_m, nav.velocity_I_mps, nav.aero_accel_I_mps2,
+                                              nav.earth_rotation_angle_rad, entry) != reentry::fsw::Status::kOk) {
+      std::fprintf(stderr, "reentry_plan: invalid NAV_STATE at tick %lld in %s\n", from_tick, from_log.c_str());
+      return 2;
+    }
+  }
   const auto t0 = std::chrono::steady_clock::now();
   const reentry::fsw::Status status = planner->plan(entry, *profile);
   const auto t1 = std::chrono::steady_clock::now();

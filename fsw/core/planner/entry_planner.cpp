@@ -432,7 +432,16 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
   };
   const double f_tol = 0.25 * crossrange_tol_m_ / r_mean_;
   // Reversal range from (just after) the planning point to the end; secant/Brent on a2.
-  const BracketedRoot root = brent_root(crossrange, 1e-9 * s_total_, s_total_ * (1.0 - 1e-9), 1e-9 * s_total_, f_tol, 60);
+  BracketedRoot root = brent_root(crossrange, 1e-9 * s_total_, s_total_ * (1.0 - 1e-9), 1e-9 * s_total_, f_tol, 60);
+  if (root.status == Status::kNoBracket) {
+    // The quadrant rule (fig. 7.20) picks the first turn from the heading offset alone; after
+    // a long wings-level descent (or with a large offset) the one-reversal solution may need
+    // the opposite first turn. Try it once before reporting that no reversal exists.
+    sign0_ = -sign0_;
+    root = brent_root(crossrange, 1e-9 * s_total_, s_total_ * (1.0 - 1e-9), 1e-9 * s_total_, f_tol, 60);
+    if (root.status != Status::kOk) sign0_ = -sign0_;
+    diag_.initial_bank_sign = sign0_;
+  }
   diag_.reversal_evaluations += evaluations;
   if (root.status != Status::kOk) return root.status;
   s_rev = root.x;
