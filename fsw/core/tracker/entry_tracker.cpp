@@ -12,8 +12,10 @@ constexpr double kMinDrag_mps2 = 1e-3;      // below this L/D is not measurable
 // Terminal phase: last kTerminalSpanFraction of the entry-to-TAEM energy span, lateral
 // logic on a heading-to-aim-point corridor from kTerminalCorridorMax_rad down to _Min_rad.
 constexpr double kTerminalSpanFraction = 0.06;
-constexpr double kTerminalCorridorMax_rad = 10.0 * M_PI / 180.0;
-constexpr double kTerminalCorridorMin_rad = 3.0 * M_PI / 180.0;
+constexpr double kTerminalCorridorMax_rad = 6.0 * M_PI / 180.0;
+constexpr double kTerminalCorridorMin_rad = 2.0 * M_PI / 180.0;
+constexpr double kTerminalDragScale = 0.3;        // bound of the range-error drag scaling
+constexpr double kTerminalMinRange_m = 20000.0;   // no scaling closer than this to the aim point
 
 double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
 
@@ -132,6 +134,22 @@ EntryTracker::RefPoint EntryTracker::reference_at(double energy) {
   return r;
 }
 
+double EntryTracker::planned_range_to_go(double energy, double drag_here) const {
+  // Trapezoidal quadrature of -int dE / D_ref from the current energy to the profile end.
+  const ReferenceProfile& p = profile_;
+  int k = hint_;
+  double range_m = 0.0;
+  double e_prev = energy, inv_prev = drag_here > 0.0 ? 1.0 / drag_here : 0.0;
+  for (int j = k + 1; j < p.n_points; ++j) {
+    if (!(p.drag_mps2[j] > 0.0)) return -1.0;
+    const double inv = 1.0 / p.drag_mps2[j];
+    range_m += 0.5 * (inv_prev + inv) * (e_prev - p.energy_Jpkg[j]);
+    e_prev = p.energy_Jpkg[j];
+    inv_prev = inv;
+  }
+  return range_m;
+}
+
 double EntryTracker::blend_weight(double e_norm) const {
   const double e_taem = taem_energy_Jpkg_ / entry_energy_Jpkg_;
   const double e_start = gains_.blend_start_e_norm;
@@ -156,10 +174,28 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     return Status::kOk;
   }
 
-  const RefPoint ref = reference_at(s.energy_Jpkg);
+  RefPoint ref = reference_at(s.energy_Jpkg);
   out.alpha_rad = clamp(ref.alpha, 0.0, alpha_max_rad_);
   const double V = s.velocity_mps, D = s.drag_mps2, r = s.radius_m;
   const double g = gravity_mps2(r);
+  const double slat = std::sin(s.latitude_rad), clat = std::cos(s.latitude_rad);
+  const bool terminal = e_norm < terminal_e_norm_;
+  if (terminal) {
+    // Terminal range control (as the Shuttle's drag reference update): the range the plan
+    // still flies from here, S = -int dE / D_ref (C.2), against the great-circle distance to
+    // the aim point; the drag reference is scaled by their ratio so a range error left by
+    // the last plan is removed continuously instead of at the next replan.
+    const double cos_arc = slat * std::sin(aim_lat_rad_) +
+                           clat * std::cos(aim_lat_rad_) * std::cos(aim_lon_rad_ - s.longitude_rad);
+    const double range_to_aim_m = kEarthRadius_m * std::acos(clamp(cos_arc, -1.0, 1.0));
+    const double planned_range_m = planned_range_to_go(s.energy_Jpkg, ref.drag);
+    if (range_to_aim_m > kTerminalMinRange_m && planned_range_m > 0.0) {
+      const double scale = clamp(planned_range_m / range_to_aim_m, 1.0 - kTerminalDragScale, 1.0 + kTerminalDragScale);
+      ref.drag *= scale;
+      ref.drag_prime *= scale;
+      ref.drag_second *= scale;
+    }
+  }
   const double sg = std::sin(s.flight_path_rad), cg = std::cos(s.flight_path_rad);
   const double V2 = V * V;
   const double lod = D > kMinDrag_mps2 ? s.lift_mps2 / D : ref.lod;  // sensed L/D
@@ -210,7 +246,6 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   drag_integral_ = clamp(drag_integral_, -i_max, i_max);
 
   // Heading loop (3.19) through (3.11), Coriolis term C_chi of (2.45).
-  const double slat = std::sin(s.latitude_rad), clat = std::cos(s.latitude_rad);
   const double tan_lat = slat / clat;
   const double chi = s.heading_rad;
   const double heading_err = wrap_pi(chi - ref.heading);
@@ -224,7 +259,6 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
 
   // Reversal: a sign change of the reference bank is flown open loop at the maximum rate.
   int sign_ref = ref.sigma >= 0.0 ? 1 : -1;
-  const bool terminal = e_norm < terminal_e_norm_;
   if (terminal && last_sign_ != 0) {
     // Terminal heading corridor: close to TAEM the bank sign turns the vehicle towards the
     // aim point, reversing only when the heading error to it leaves a corridor that narrows

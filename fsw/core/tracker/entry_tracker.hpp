@@ -81,6 +81,8 @@ class EntryTracker {
   };
   RefPoint reference_at(double energy_Jpkg);
   double blend_weight(double e_norm) const;
+  /// -int dE / D_ref from `energy` to the end of the profile (C.2); negative if undefined.
+  double planned_range_to_go(double energy, double drag_here) const;
 
   OnboardModels models_;
   AlphaProfile alpha_profile_;
