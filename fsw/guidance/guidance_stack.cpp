@@ -4,7 +4,6 @@
 
 namespace reentry::fsw {
 
-
 Status TrackerLaw::step(const RelativeState& s, double dt_s, bool /*has_profile*/, exec::LawOutput& out) {
   const Status st = tracker.step(s, dt_s, last);
   if (st != Status::kOk) return st;
