@@ -13,23 +13,10 @@
 #include <vector>
 
 #include "app/lcm_codec.hpp"
+#include "app/monotonic_clock.hpp"
 
 namespace reentry::fsw::app {
 namespace {
-
-std::int64_t mono_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
-}
-
-void sleep_until_ns(std::int64_t t_ns) {
-  timespec ts{};
-  ts.tv_sec = t_ns / 1000000000LL;
-  ts.tv_nsec = t_ns % 1000000000LL;
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-  }
-}
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
 

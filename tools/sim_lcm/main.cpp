@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "app/lcm_codec.hpp"
+#include "app/monotonic_clock.hpp"
 #include "dynamics/simulator.hpp"
 #include "evaluation/mission_verdict.hpp"
 #include "reentry/config/mission.hpp"
@@ -32,6 +33,8 @@ namespace {
 
 using reentry::fsw::app::decode_into;
 using reentry::fsw::app::encode_into;
+using reentry::fsw::app::mono_ns;
+using reentry::fsw::app::sleep_until_ns;
 
 constexpr int kExitOk = 0;
 constexpr int kExitUsage = 2;
@@ -49,20 +52,6 @@ void on_cmd(const lcm::ReceiveBuffer* rbuf, const std::string&, CmdState* st) {
   if (!st->have_latest || st->msg.tick >= st->latest.tick) {
     st->latest = st->msg;
     st->have_latest = true;
-  }
-}
-
-std::int64_t mono_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
-}
-
-void sleep_until_ns(std::int64_t t_ns) {
-  timespec ts{};
-  ts.tv_sec = t_ns / 1000000000LL;
-  ts.tv_nsec = t_ns % 1000000000LL;
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
   }
 }
 
