@@ -247,8 +247,14 @@ CycleOutput Executive::step(const NavInput& nav) {
     const RelativeState& s = nav.state;
     bool want = false;
     if (!first_plan_requested_) {
-      want = s.drag_mps2 >= cfg_.initial_descent_drag_mps2;
-      if (want) first_plan_requested_ = true;
+      // At the entry interface: a plan from the entry state, flown once the drag is captured.
+      want = true;
+      first_plan_requested_ = true;
+      capture_plan_requested_ = s.drag_mps2 >= cfg_.initial_descent_drag_mps2;  // already captured
+    } else if (!capture_plan_requested_ && s.drag_mps2 >= cfg_.initial_descent_drag_mps2) {
+      // End of the initial descent: plan again from the actual (captured) state.
+      want = true;
+      capture_plan_requested_ = true;
     } else if (replan_after_reversal_) {
       want = true;
       replan_after_reversal_ = false;

@@ -64,7 +64,7 @@ struct ExecConfig {
   int plan_latency_ticks = 5;               // L (>= 1: requested after the law step of tick k)
   double replan_period_s = 50.0;
   double replan_drag_error_frac = 0.15;
-  double initial_descent_drag_mps2 = 0.05 * 9.80665;  // first plan requested once sensed drag exceeds this
+  double initial_descent_drag_mps2 = 0.05 * 9.80665;  // replan from the captured state once sensed drag exceeds this
   double plan_wait_limit_s = 30.0;          // bound of the lockstep wait for a late plan
   PlanMode mode = PlanMode::kLockstep;
 };
@@ -182,6 +182,7 @@ class Executive {
   double last_request_t_s_ = -1.0;
   int next_plan_seq_ = 1;
   bool first_plan_requested_ = false;
+  bool capture_plan_requested_ = false;
   bool replan_after_reversal_ = false;
   Phase last_phase_ = Phase::kInitialDescent;
 
