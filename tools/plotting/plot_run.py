@@ -97,15 +97,24 @@ def energy_norm(truth, summary):
 
 
 def plot_ground_track(truth, summary, out_dir, made):
-    fig, ax = plt.subplots(figsize=(10, 7))
+    """Whole track (left) and the terminal area around the aim point (right, with the HAC)."""
+    fig, (ax, az) = plt.subplots(1, 2, figsize=(14, 6.5), gridspec_kw={"width_ratios": [1.6, 1.0]})
     lat = np.degrees(truth["latitude_rad"])
-    lon = np.degrees(truth["longitude_rad"])
-    ax.plot(lon, lat, "b-", lw=1.8, label="flown ground track (TRUTH)")
+    lon = np.degrees(np.unwrap(np.asarray(truth["longitude_rad"], dtype=float)))
+    lon0 = lon[0]
+
+    def near_track(lon_deg):  # same branch as the track (mission files may use 0..360 deg)
+        return (lon_deg - lon0 + 180.0) % 360.0 - 180.0 + lon0
+
+    for a in (ax, az):
+        a.plot(lon, lat, "b-", lw=1.8, label="flown ground track (TRUTH)")
+        a.plot(lon[-1], lat[-1], "ks", ms=7, label="end of run")
     ax.plot(lon[0], lat[0], "go", ms=9, label="entry interface")
-    ax.plot(lon[-1], lat[-1], "ks", ms=7, label="end of run")
-    if "taem_lat_deg" in summary and "taem_lon_deg" in summary:
-        alat, alon = float(summary["taem_lat_deg"]), float(summary["taem_lon_deg"])
-        ax.plot(alon, alat, "r*", ms=14, label="TAEM aim point")
+    have_aim = "taem_lat_deg" in summary and "taem_lon_deg" in summary
+    if have_aim:
+        alat, alon = float(summary["taem_lat_deg"]), near_track(float(summary["taem_lon_deg"]))
+        for a in (ax, az):
+            a.plot(alon, alat, "r*", ms=14, label="TAEM aim point")
         if "hac_radius_km" in summary:
             r_m = float(summary["hac_radius_km"]) * 1e3
             if "taem_heading_deg" in summary:
@@ -115,11 +124,18 @@ def plot_ground_track(truth, summary, out_dir, made):
             clat, clon = destination(math.radians(alat), math.radians(alon), chi, r_m)
             b = np.linspace(0.0, 2.0 * math.pi, 361)
             hlat, hlon = destination(clat, clon, b, r_m)
-            ax.plot(np.degrees(hlon), np.degrees(hlat), "m--", lw=1.4,
+            az.plot(np.degrees(hlon), np.degrees(hlat), "m--", lw=1.4,
                     label=f"heading-alignment circle (r = {r_m / 1e3:.1f} km)")
-            ax.plot(math.degrees(clon), math.degrees(clat), "m+", ms=10, label="HAC centre")
+            az.plot(math.degrees(clon), math.degrees(clat), "m+", ms=10, label="HAC centre")
+        # Terminal-area window: 1.5 deg around the aim point (about 170 km).
+        az.set_xlim(alon - 1.5, alon + 1.5)
+        az.set_ylim(alat - 1.0, alat + 1.0)
     style(ax, "longitude [deg]", "latitude [deg]", "Ground track")
+    style(az, "longitude [deg]", "latitude [deg]", "Terminal area")
     ax.set_aspect(1.0 / max(math.cos(math.radians(float(np.nanmean(lat)))), 0.1), adjustable="datalim")
+    if have_aim:
+        az.set_aspect(1.0 / max(math.cos(math.radians(alat)), 0.1), adjustable="box")
+    fig.tight_layout()
     save(fig, out_dir, "ground_track.png", made)
 
 
