@@ -3,7 +3,7 @@
 #   lockstep_replay: lockstep X-33 SIL via tools/sil, log + summary keys, replay identical,
 #                    one altered nav value -> replay names that tick.
 #   link_loss:       simulator killed mid-run -> guidance exits with code 3 within 3 ticks (+ margin).
-#   realtime:        10 s realtime run (simulated 10 s): jitter reported, zero cycle overruns.
+#   realtime:        60 s realtime run (simulated 60 s): jitter reported, zero cycle overruns.
 set -u
 case_name="$1"; dir="$2"; alter="$3"
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -41,6 +41,21 @@ case "$case_name" in
       echo "attempt $attempt: $out"
     done
     [[ "$out" == identical* ]] || fail "replay differs: $out"
+    # tools/sil draws the plots at the end of the run: at least six valid, non-trivial PNGs.
+    /usr/bin/python3 - "$dir/plots" <<'PY' || fail "plots missing or invalid"
+import os, struct, sys
+d = sys.argv[1]
+pngs = sorted(f for f in os.listdir(d) if f.endswith(".png")) if os.path.isdir(d) else []
+ok = 0
+for f in pngs:
+    b = open(os.path.join(d, f), "rb").read()
+    if b[:8] != b"\x89PNG\r\n\x1a\n" or b[12:16] != b"IHDR": print("not a PNG:", f); continue
+    w, h = struct.unpack(">II", b[16:24])
+    if w < 300 or h < 300 or len(b) < 20000: print("too small:", f, w, h, len(b)); continue
+    ok += 1
+print("plots:", ok, "valid PNGs:", ", ".join(pngs))
+sys.exit(0 if ok >= 6 else 1)
+PY
     echo "$out"
     [[ "$out" == identical* ]] || fail "replay did not print identical"
     tick=5000
@@ -68,7 +83,7 @@ case "$case_name" in
     cat "$dir/fsw.txt"
     ;;
   realtime)
-    REENTRY_SIM_ARGS="--stop-after 10" "$repo/tools/sil" --mission x33 --mode realtime --out "$dir" > "$dir/sil_stdout.txt"
+    REENTRY_SIM_ARGS="--stop-after 60" "$repo/tools/sil" --mission x33 --mode realtime --out "$dir" > "$dir/sil_stdout.txt"
     rc=$?
     [[ $rc -le 1 ]] || fail "tools/sil exited $rc"
     check_keys "$dir/summary.json"
