@@ -389,10 +389,13 @@ void expect_converged(const CaseResult& r) {
 
 }  // namespace
 
-// HORUS case 4 with the thesis geometry and the public Orbiter tables as stand-in aero. With
-// the modelled HORUS aero of config/vehicles/horus.toml this case is infeasible for the method:
-// the profile sits on the maximum-drag constraint and still overshoots (reported, see below).
+// HORUS case 4 (table 7.1: Di = Lmin, three segments; thesis: 3 iterations, 6677 km) on the
+// mission file (modelled HORUS aero, 43 deg alpha at high energy), and with the thesis
+// geometry on the public Orbiter tables as stand-in aero.
 TEST(EntryPlanner, HorusCase4LminThreeSegmentConverges) {
+  const CaseResult r = run_case(load_or_fallback("horus"), "three_segment", "lmin");
+  expect_converged(r);
+  EXPECT_NEAR(r.diag.s_final_m / 1e3, 6677.0, 0.05 * 6677.0);
   expect_converged(run_case(planner_test::horus_fallback(), "three_segment", "lmin"));
 }
 
