@@ -1,0 +1,35 @@
+// One closed-loop mission flown in process: the truth simulator and the guidance stack of the
+// guidance process (same executive, planner, tracker and filters, synchronous plan mode, which
+// gives the same commands as lockstep over LCM), tick for tick in the order of the LCM
+// simulator: nav of tick k -> command of tick k -> integrate to tick k+1.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "dynamics/simulator.hpp"
+#include "evaluation/mission_verdict.hpp"
+#include "reentry/config/mission.hpp"
+
+namespace reentry::tools {
+
+struct ClosedLoopResult {
+  std::uint64_t seed = 0;
+  bool dispersed = false;
+  std::string error;                      // set when the run could not be started
+  truth::RunSummary summary;
+  truth::MissionVerdict verdict;
+  truth::CommandRateMaxima rates;
+  truth::DispersionDraw dispersion;
+  int planner_runs = 0;
+  int plans_adopted = 0;
+  int planner_failures = 0;
+  double planner_ms_max = 0.0;
+  double cycle_us_max = 0.0;
+  double wall_s = 0.0;
+};
+
+/// Flies the mission; dispersed runs draw their dispersions from `seed` (draw_dispersions).
+ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t seed, bool dispersed);
+
+}  // namespace reentry::tools

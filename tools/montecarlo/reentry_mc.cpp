@@ -1,0 +1,268 @@
+// reentry_mc: Monte Carlo dispersion campaigns of closed-loop missions flown in process.
+//   reentry_mc --mission M --runs N --seed S --out DIR [--jobs J] [--shard i/K] [--nominal]
+//   reentry_mc --merge DIR1 [DIR2 ...] --out DIR
+// Run r (0 <= r < N) uses seed S + r, so any run is reproduced alone with the same seed
+// (e.g. tools/sil --seed S+r). A shard i/K flies the runs with r % K == i and writes
+// DIR/runs_shard_i_of_K.jsonl; a whole campaign writes DIR/runs.jsonl; --merge combines the
+// run files of several directories. Every mode ends by writing DIR/report.json.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "campaign_stats.hpp"
+#include "closed_loop.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using reentry::tools::ClosedLoopResult;
+
+namespace {
+
+constexpr double kDeg = 180.0 / M_PI;
+
+json run_record(int run, const ClosedLoopResult& r) {
+  const auto& f = r.summary.final_state;
+  const auto& m = r.summary.maxima;
+  const auto& d = r.dispersion;
+  json j;
+  j["run"] = run;
+  j["seed"] = r.seed;
+  j["success"] = r.error.empty() && r.verdict.success;
+  j["error"] = r.error;
+  j["event"] = reentry::truth::to_string(r.summary.event);
+  j["miss_km"] = r.verdict.taem_miss_m * 1e-3;
+  j["alt_err_km"] = r.verdict.altitude_err_m * 1e-3;
+  j["mach"] = r.verdict.mach;
+  j["heading_err_deg"] = r.verdict.heading_err_rad * kDeg;
+  j["gamma_deg"] = f.gamma_rad * kDeg;
+  j["final_lat_deg"] = f.lat_rad * kDeg;
+  j["final_lon_deg"] = f.lon_rad * kDeg;
+  j["max_heat_flux_kW_m2"] = m.qdot_Wpm2 * 1e-3;
+  j["max_g"] = m.n_g;
+  j["max_q_kPa"] = m.q_Pa * 1e-3;
+  j["max_q_alpha_kPa_deg"] = m.q_alpha_Pa_rad * 1e-3 * kDeg;
+  j["heat_load_MJ_m2"] = f.Q_Jpm2 * 1e-6;
+  j["violations"] = r.verdict.violations;
+  j["planner_runs"] = r.planner_runs;
+  j["plans_adopted"] = r.plans_adopted;
+  j["planner_ms_max"] = r.planner_ms_max;
+  j["wall_s"] = r.wall_s;
+  j["dispersion"] = {{"entry_gamma_deg", d.entry_flight_path_rad * kDeg},
+                     {"entry_heading_deg", d.entry_heading_rad * kDeg},
+                     {"entry_velocity_mps", d.entry_velocity_mps},
+                     {"density_scale", d.density_scale},
+                     {"cl_scale", d.cl_scale},
+                     {"cd_scale", d.cd_scale},
+                     {"mass_scale", d.mass_scale},
+                     {"wind_scale", d.wind_scale}};
+  return j;
+}
+
+void progress(int done, int total, double elapsed_s) {
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  const int step = std::max(1, total / 10);
+  if (!tty && done != total && done % step != 0) return;
+  const double eta = done > 0 ? elapsed_s / done * (total - done) : 0.0;
+  const int width = 30;
+  const int filled = total > 0 ? width * done / total : width;
+  std::fprintf(stderr, "%s[%s%s] %d/%d runs, %.0f s elapsed, ETA %.0f s%s", tty ? "\r" : "",
+               std::string(static_cast<std::size_t>(filled), '#').c_str(),
+               std::string(static_cast<std::size_t>(width - filled), '.').c_str(), done, total, elapsed_s, eta,
+               tty ? (done == total ? "\n" : "") : "\n");
+  std::fflush(stderr);
+}
+
+std::vector<json> read_runs(const std::vector<std::string>& dirs, std::string* error) {
+  std::vector<json> runs;
+  std::map<int, std::string> seen;
+  for (const auto& d : dirs) {
+    if (!fs::is_directory(d)) {
+      *error = "not a directory: " + d;
+      return {};
+    }
+    for (const auto& entry : fs::directory_iterator(d)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind("runs", 0) != 0 || entry.path().extension() != ".jsonl") continue;
+      std::ifstream in(entry.path());
+      std::string line;
+      int line_no = 0;
+      while (std::getline(in, line)) {
+        ++line_no;
+        if (line.empty()) continue;
+        json j = json::parse(line, nullptr, false);
+        if (j.is_discarded() || !j.contains("run")) {
+          *error = entry.path().string() + ":" + std::to_string(line_no) + ": not a run record";
+          return {};
+        }
+        const int run = j["run"].get<int>();
+        if (seen.count(run) != 0) {
+          *error = "run " + std::to_string(run) + " appears twice (" + seen[run] + " and " + entry.path().string() + ")";
+          return {};
+        }
+        seen[run] = entry.path().string();
+        runs.push_back(std::move(j));
+      }
+    }
+  }
+  std::sort(runs.begin(), runs.end(), [](const json& a, const json& b) { return a["run"] < b["run"]; });
+  return runs;
+}
+
+json summarise(const std::vector<json>& runs, const std::string& mission) {
+  using reentry::tools::percentile;
+  std::vector<double> miss, alt, mach, heading, qdot, g, q, qa, plan_ms, wall;
+  json failed = json::array();
+  int successes = 0;
+  for (const auto& r : runs) {
+    if (r["success"].get<bool>()) ++successes;
+    else failed.push_back(r["seed"]);
+    miss.push_back(r["miss_km"]);
+    alt.push_back(std::fabs(r["alt_err_km"].get<double>()));
+    mach.push_back(r["mach"]);
+    heading.push_back(std::fabs(r["heading_err_deg"].get<double>()));
+    qdot.push_back(r["max_heat_flux_kW_m2"]);
+    g.push_back(r["max_g"]);
+    q.push_back(r["max_q_kPa"]);
+    qa.push_back(r["max_q_alpha_kPa_deg"]);
+    plan_ms.push_back(r["planner_ms_max"]);
+    wall.push_back(r["wall_s"]);
+  }
+  const int n = static_cast<int>(runs.size());
+  const auto ci = reentry::tools::wilson_interval(successes, n);
+  auto dist = [&](const std::vector<double>& v) {
+    return json{{"p50", percentile(v, 50)}, {"p95", percentile(v, 95)}, {"max", percentile(v, 100)}};
+  };
+  json rep;
+  rep["mission"] = mission;
+  rep["runs"] = n;
+  rep["successes"] = successes;
+  rep["success_rate"] = n > 0 ? static_cast<double>(successes) / n : 0.0;
+  rep["ci95_low"] = ci.low;
+  rep["ci95_high"] = ci.high;
+  rep["miss_km_p50"] = percentile(miss, 50);
+  rep["miss_km_p95"] = percentile(miss, 95);
+  rep["miss_km_max"] = percentile(miss, 100);
+  rep["failed_seeds"] = failed;
+  rep["altitude_err_km_abs"] = dist(alt);
+  rep["mach"] = {{"p5", percentile(mach, 5)}, {"p50", percentile(mach, 50)}, {"p95", percentile(mach, 95)}};
+  rep["heading_err_deg_abs"] = dist(heading);
+  rep["max_heat_flux_kW_m2"] = dist(qdot);
+  rep["max_g"] = dist(g);
+  rep["max_q_kPa"] = dist(q);
+  rep["max_q_alpha_kPa_deg"] = dist(qa);
+  rep["planner_ms_max"] = dist(plan_ms);
+  rep["wall_s_per_run"] = dist(wall);
+  std::vector<json> sorted = runs;
+  std::sort(sorted.begin(), sorted.end(),
+            [](const json& a, const json& b) { return a["miss_km"].get<double>() > b["miss_km"].get<double>(); });
+  json worst = json::array();
+  for (std::size_t i = 0; i < sorted.size() && i < 5; ++i) {
+    worst.push_back({{"seed", sorted[i]["seed"]}, {"miss_km", sorted[i]["miss_km"]}, {"event", sorted[i]["event"]},
+                     {"violations", sorted[i]["violations"]}});
+  }
+  rep["worst_cases"] = worst;
+  return rep;
+}
+
+int write_report(const std::vector<std::string>& dirs, const std::string& out, const std::string& mission) {
+  std::string error;
+  const auto runs = read_runs(dirs, &error);
+  if (!error.empty()) {
+    std::fprintf(stderr, "reentry_mc: %s\n", error.c_str());
+    return 2;
+  }
+  std::string name = mission;
+  if (name.empty() && !runs.empty() && runs.front().contains("mission")) name = runs.front()["mission"];
+  const json rep = summarise(runs, name);
+  fs::create_directories(out);
+  std::ofstream(fs::path(out) / "report.json") << rep.dump(2) << "\n";
+  std::printf("%s: %d/%d successful (%.1f %%, 95 %% CI %.1f-%.1f %%), miss p50 %.2f km, p95 %.2f km, max %.2f km\n",
+              name.c_str(), rep["successes"].get<int>(), rep["runs"].get<int>(), 100.0 * rep["success_rate"].get<double>(),
+              100.0 * rep["ci95_low"].get<double>(), 100.0 * rep["ci95_high"].get<double>(),
+              rep["miss_km_p50"].get<double>(), rep["miss_km_p95"].get<double>(), rep["miss_km_max"].get<double>());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"reentry Monte Carlo campaign (closed loop, in process)"};
+  std::string mission_arg, out, shard;
+  int runs = 0, jobs = 0;
+  std::uint64_t seed = 1;
+  bool nominal = false;
+  std::vector<std::string> merge;
+  app.add_option("--mission", mission_arg, "mission name or TOML file");
+  app.add_option("--runs", runs, "number of runs of the whole campaign");
+  app.add_option("--seed", seed, "seed of run 0 (run r uses seed + r)");
+  app.add_option("--out", out, "output directory")->required();
+  app.add_option("--jobs", jobs, "parallel runs (default: all cores)");
+  app.add_option("--shard", shard, "i/K: fly only the runs r with r % K == i");
+  app.add_flag("--nominal", nominal, "no dispersions (every run nominal)");
+  app.add_option("--merge", merge, "combine the run files of these directories into --out/report.json");
+  CLI11_PARSE(app, argc, argv);
+
+  if (!merge.empty()) return write_report(merge, out, "");
+  if (mission_arg.empty() || runs <= 0) {
+    std::fprintf(stderr, "reentry_mc: --mission and --runs N (N >= 1) are required (or --merge)\n");
+    return 2;
+  }
+  int shard_i = 0, shard_k = 1;
+  if (!shard.empty()) {
+    if (std::sscanf(shard.c_str(), "%d/%d", &shard_i, &shard_k) != 2 || shard_k < 1 || shard_i < 0 || shard_i >= shard_k) {
+      std::fprintf(stderr, "reentry_mc: --shard must be i/K with 0 <= i < K, got '%s'\n", shard.c_str());
+      return 2;
+    }
+  }
+  const auto loaded = reentry::config::load_mission(mission_arg);
+  if (!loaded.ok) {
+    std::fprintf(stderr, "reentry_mc: %s\n", loaded.error.c_str());
+    return 2;
+  }
+  std::vector<int> mine;
+  for (int r = 0; r < runs; ++r) {
+    if (r % shard_k == shard_i) mine.push_back(r);
+  }
+  if (jobs <= 0) jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<json> records(mine.size());
+  std::atomic<std::size_t> next{0};
+  std::atomic<int> done{0};
+  std::mutex progress_mutex;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto worker = [&] {
+    for (std::size_t i = next++; i < mine.size(); i = next++) {
+      const int r = mine[i];
+      const ClosedLoopResult res = reentry::tools::run_closed_loop(loaded.mission, seed + r, !nominal);
+      records[i] = run_record(r, res);
+      records[i]["mission"] = loaded.mission.name;
+      const int d = ++done;
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      progress(d, static_cast<int>(mine.size()),
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int j = 0; j < std::min<int>(jobs, static_cast<int>(mine.size())); ++j) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+
+  fs::create_directories(out);
+  const std::string file = shard.empty() ? "runs.jsonl"
+                                         : "runs_shard_" + std::to_string(shard_i) + "_of_" + std::to_string(shard_k) + ".jsonl";
+  std::ofstream f(fs::path(out) / file);
+  for (const auto& rec : records) f << rec.dump() << "\n";
+  f.close();
+  return write_report({out}, out, loaded.mission.name);
+}
