@@ -2,6 +2,9 @@
 // the output follows the guidance command as fast as the vehicle may rotate (thesis §3.1.3
 // control constraints: |rate| <= rate_max, |acceleration| <= accel_max) and brakes in time
 // so it reaches a constant target without overshoot (v_allowed = sqrt(2 a |e|)).
+// Known limitation: the output lands exactly on the target at a GNC tick, so when a short
+// move (shorter than rate_max^2 / accel_max) does not end on a tick, the landing step brakes
+// up to about 11 % harder than accel_max (tests/guidance_units); long moves respect it exactly.
 #pragma once
 
 #include "guidance_types.hpp"
