@@ -8,6 +8,7 @@
 #include "filter/rate_filter.hpp"
 #include "models/onboard_models.hpp"
 #include "nav/relative_state.hpp"
+#include "planner/entry_planner.hpp"
 #include "reentry/config/mission.hpp"
 #include "tracker/entry_tracker.hpp"
 
@@ -177,6 +178,52 @@ TEST(Tracker, GainsFollowTheDocumentedRuleUnlessTheMissionOverrides) {
   g = derive_gains(m);
   EXPECT_DOUBLE_EQ(g.omega0_radps, 0.05);
   EXPECT_DOUBLE_EQ(g.zeta, 0.9);
+}
+
+TEST(Tracker, AdversarialInputsInTrackingNeverGiveANaNCommand) {
+  // Found by a review: lift 0 with normal drag gave 0/0 -> NaN bank with status ok.
+  const auto loaded = config::load_mission("x33");
+  ASSERT_TRUE(loaded.ok) << loaded.error;
+  EntryPlanner planner;  // static-size object; the test body is not flight code
+  ASSERT_EQ(planner.init(loaded.mission), Status::kOk);
+  static ReferenceProfile profile;
+  ASSERT_EQ(planner.plan(planner.entry_state(), profile), Status::kOk);
+  EntryTracker t;
+  ASSERT_EQ(t.init(loaded.mission), Status::kOk);
+  t.set_profile(profile);
+  const int k = profile.n_points / 2;
+  RelativeState s;
+  s.radius_m = profile.radius_m[k];
+  s.altitude_m = profile.radius_m[k] - kEarthRadius_m;
+  s.velocity_mps = profile.velocity_mps[k];
+  s.flight_path_rad = profile.gamma_rad[k];
+  s.heading_rad = profile.heading_rad[k];
+  s.energy_Jpkg = profile.energy_Jpkg[k];
+  s.drag_mps2 = profile.drag_mps2[k];
+  s.lift_mps2 = profile.drag_mps2[k] * profile.lift_over_drag[k];
+  TrackerOutput out;
+  ASSERT_EQ(t.step(s, 0.1, out), Status::kOk);  // captured: tracking
+  EXPECT_EQ(out.phase, Phase::kTracking);
+  const struct { double drag, lift, speed; } cases[] = {
+      {s.drag_mps2, 0.0, s.velocity_mps},         // no sensed lift
+      {0.0, 0.0, s.velocity_mps},                 // nothing sensed
+      {1e300, 1e300, s.velocity_mps},             // absurd accelerations
+      {s.drag_mps2, s.lift_mps2, 1e300},          // absurd speed
+      {s.drag_mps2, -1.0, s.velocity_mps},        // negative lift magnitude
+  };
+  for (const auto& c : cases) {
+    RelativeState a = s;
+    a.drag_mps2 = c.drag;
+    a.lift_mps2 = c.lift;
+    a.velocity_mps = c.speed;
+    const Status st = t.step(a, 0.1, out);
+    if (st == Status::kOk) {
+      EXPECT_TRUE(std::isfinite(out.sigma_rad) && std::isfinite(out.alpha_rad))
+          << "drag " << c.drag << " lift " << c.lift << " V " << c.speed;
+    } else {
+      EXPECT_TRUE(st == Status::kInvalidInput || st == Status::kNonFinite) << to_string(st);
+    }
+  }
 }
 
 TEST(Tracker, InitialDescentHoldsProfileAlphaWingsLevelAndNeverEmitsNaN) {

@@ -9,6 +9,9 @@ namespace {
 
 constexpr double kScaleHeight_m = 7050.0;   // exponential-atmosphere scale height (2.20)
 constexpr double kMinDrag_mps2 = 1e-3;      // below this L/D is not measurable
+constexpr double kMinLiftOverDrag = 1e-3;    // below this the sensed L/D is not used
+constexpr double kMaxSpeed_mps = 12000.0;    // above escape speed: not an entry state
+constexpr double kMaxAccel_mps2 = 100.0 * 9.80665;
 // Terminal phase: last kTerminalSpanFraction of the entry-to-TAEM energy span, lateral
 // logic on a heading-to-aim-point corridor from kTerminalCorridorMax_rad down to _Min_rad.
 constexpr double kTerminalSpanFraction = 0.06;
@@ -162,6 +165,12 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   if (!initialised_) return Status::kInvalidInput;
   if (!finite_state(s) || !std::isfinite(dt_s)) return Status::kNonFinite;
   if (!(dt_s > 0.0) || !(s.velocity_mps > 0.0) || !(s.radius_m > 0.0)) return Status::kInvalidInput;
+  // Physically impossible navigation (faster than escape, sensed accelerations beyond 100 g)
+  // is rejected rather than pushed through the drag dynamics, where it would overflow.
+  if (s.velocity_mps > kMaxSpeed_mps || s.drag_mps2 < 0.0 || s.drag_mps2 > kMaxAccel_mps2 || s.lift_mps2 < 0.0 ||
+      s.lift_mps2 > kMaxAccel_mps2) {
+    return Status::kInvalidInput;
+  }
 
   const double e_norm = s.energy_Jpkg / entry_energy_Jpkg_;
   out = TrackerOutput{};
@@ -198,7 +207,11 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   }
   const double sg = std::sin(s.flight_path_rad), cg = std::cos(s.flight_path_rad);
   const double V2 = V * V;
-  const double lod = D > kMinDrag_mps2 ? s.lift_mps2 / D : ref.lod;  // sensed L/D
+  // Sensed L/D where it is measurable, else the planned one (a lift-less or drag-less
+  // measurement must not turn into a 0/0 bank command).
+  const double lod_sensed = D > kMinDrag_mps2 ? s.lift_mps2 / D : 0.0;
+  const double lod = lod_sensed >= kMinLiftOverDrag ? lod_sensed : ref.lod;
+  if (!(lod >= kMinLiftOverDrag)) return Status::kInvalidInput;
 
   // Actual D' from (7.14): density gradient and C_D' from the on-board models.
   const double dlnrho_dr = models_.dlnrho_dr_fd(s.altitude_m, 100.0);
@@ -283,6 +296,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
 
   const double w = (reversing || terminal) ? 1.0 : blend_weight(e_norm);
   out.sigma_rad = w * sign_ref * sigma_d + (1.0 - w) * sigma_chi;            // (3.22)
+  if (!std::isfinite(out.sigma_rad) || !std::isfinite(out.alpha_rad)) return Status::kNonFinite;
   out.sigma_d_rad = sigma_d;
   out.sigma_chi_rad = sigma_chi;
   out.phase = s.t_s < reversal_until_t_s_ ? Phase::kReversal : Phase::kTracking;
