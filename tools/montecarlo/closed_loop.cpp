@@ -3,13 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "guidance/guidance_stack.hpp"
 #include "nav/relative_state.hpp"
 
 namespace reentry::tools {
 
-ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t seed, bool dispersed) {
+ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t seed, bool dispersed,
+                                 const std::string& trace_csv) {
   const auto t0 = std::chrono::steady_clock::now();
   ClosedLoopResult r;
   r.seed = seed;
@@ -32,6 +34,13 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
   const double dt = 1.0 / mission.guidance.gnc_rate_hz;
   double alpha_prev = 0.0, sigma_prev = 0.0;
   bool have_prev = false;
+  std::FILE* trace = trace_csv.empty() ? nullptr : std::fopen(trace_csv.c_str(), "w");
+  if (trace) {
+    std::fprintf(trace,
+                 "t_s,h_km,V_mps,gamma_deg,chi_deg,lat_deg,lon_deg,range_to_taem_km,bearing_to_taem_deg,E_Jpkg,"
+                 "D_mps2,D_ref_mps2,alpha_cmd_deg,sigma_cmd_deg,heading_err_deg,qdot_kWpm2,q_kPa,n_g,mach,phase,plan_seq\n");
+  }
+  const int trace_every = std::max(1, static_cast<int>(std::lround(mission.guidance.gnc_rate_hz)));
   const auto max_ticks = static_cast<std::int64_t>(std::ceil(sim->settings().time_limit_s / dt)) + 2;
   for (std::int64_t k = 0; k < max_ticks && !sim->finished(); ++k) {
     const truth::NavSample n = sim->nav_sample();
@@ -51,10 +60,21 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
         sigma_prev = out.sigma_rad;
         have_prev = true;
         sim->set_command(out.alpha_rad, out.sigma_rad);
+        if (trace && k % trace_every == 0) {
+          const truth::TruthSample t = sim->sample();
+          constexpr double d = 180.0 / M_PI;
+          std::fprintf(trace, "%.1f,%.4f,%.2f,%.4f,%.3f,%.5f,%.5f,%.3f,%.3f,%.1f,%.4f,%.4f,%.3f,%.3f,%.3f,%.2f,%.3f,%.4f,%.3f,%d,%d\n",
+                       t.t_s, t.h_m * 1e-3, t.V_mps, t.gamma_rad * d, t.chi_rad * d, t.lat_rad * d, t.lon_rad * d,
+                       t.range_to_taem_m * 1e-3, t.heading_to_taem_rad * d, t.E_Jpkg, t.D_mps2,
+                       out.drag_err_mps2 == 0.0 ? 0.0 : t.D_mps2 - out.drag_err_mps2, out.alpha_rad * d,
+                       out.sigma_rad * d, out.heading_err_rad * d, t.qdot_Wpm2 * 1e-3, t.q_Pa * 1e-3, t.n_g,
+                       t.mach, static_cast<int>(out.phase), static_cast<int>(out.plan_seq));
+        }
       }
     }
     sim->advance_to(static_cast<double>(k + 1) * dt);
   }
+  if (trace) std::fclose(trace);
   r.summary = sim->summary();
   r.verdict = truth::judge_mission(mission, r.summary, r.rates);
   const auto& c = stack.executive->counters();

@@ -30,6 +30,9 @@ struct ClosedLoopResult {
 };
 
 /// Flies the mission; dispersed runs draw their dispersions from `seed` (draw_dispersions).
-ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t seed, bool dispersed);
+/// A non-empty `trace_csv` receives the truth state and the guidance command once per second
+/// (the trajectory sample of the run, for plots and diagnosis).
+ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t seed, bool dispersed,
+                                 const std::string& trace_csv = {});
 
 }  // namespace reentry::tools

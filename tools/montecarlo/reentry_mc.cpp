@@ -203,7 +203,7 @@ int main(int argc, char** argv) {
   std::string mission_arg, out, shard;
   int runs = 0, jobs = 0;
   std::uint64_t seed = 1;
-  bool nominal = false;
+  bool nominal = false, trace = false;
   std::vector<std::string> merge;
   app.add_option("--mission", mission_arg, "mission name or TOML file");
   app.add_option("--runs", runs, "number of runs of the whole campaign");
@@ -212,6 +212,7 @@ int main(int argc, char** argv) {
   app.add_option("--jobs", jobs, "parallel runs (default: all cores)");
   app.add_option("--shard", shard, "i/K: fly only the runs r with r % K == i");
   app.add_flag("--nominal", nominal, "no dispersions (every run nominal)");
+  app.add_flag("--trace", trace, "write each run's trajectory (1 Hz) to --out/traces/run_<seed>.csv");
   app.add_option("--merge", merge, "combine the run files of these directories into --out/report.json");
   CLI11_PARSE(app, argc, argv);
 
@@ -237,6 +238,7 @@ int main(int argc, char** argv) {
     if (r % shard_k == shard_i) mine.push_back(r);
   }
   if (jobs <= 0) jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (trace) fs::create_directories(fs::path(out) / "traces");
   std::vector<json> records(mine.size());
   std::atomic<std::size_t> next{0};
   std::atomic<int> done{0};
@@ -245,7 +247,9 @@ int main(int argc, char** argv) {
   auto worker = [&] {
     for (std::size_t i = next++; i < mine.size(); i = next++) {
       const int r = mine[i];
-      const ClosedLoopResult res = reentry::tools::run_closed_loop(loaded.mission, seed + r, !nominal);
+      const std::string trace_csv =
+          trace ? (fs::path(out) / "traces" / ("run_" + std::to_string(seed + r) + ".csv")).string() : std::string();
+      const ClosedLoopResult res = reentry::tools::run_closed_loop(loaded.mission, seed + r, !nominal, trace_csv);
       records[i] = run_record(r, res);
       records[i]["mission"] = loaded.mission.name;
       const int d = ++done;
