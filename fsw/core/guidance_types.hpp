@@ -49,6 +49,12 @@ struct RelativeState {
   double lift_mps2 = 0.0;             // sensed lift acceleration magnitude
 };
 
+/// Lateral corridor phase: over the last kLateralCorridorSpanFraction of the entry-to-TAEM
+/// energy span the tracker keeps the vehicle on the arrival great circle with a heading
+/// corridor instead of the planned reversal; the planner's reduced-order trajectory flies
+/// that circle there too, so that planned and flown path lengths agree.
+inline constexpr double kLateralCorridorSpanFraction = 0.30;
+
 /// A planned reference over energy, produced by the planner, consumed by the tracker.
 /// Points are ordered by decreasing energy (index 0 = planning state, last = TAEM).
 struct ReferenceProfile {
@@ -69,6 +75,7 @@ struct ReferenceProfile {
   double sigma_rad[kProfileCapacity] = {};     // signed bank angle including the reversal
   double heading_rad[kProfileCapacity] = {};   // chi(E) from the reduced-order integration
   double dynamic_pressure_Pa[kProfileCapacity] = {};
+  double drag_max_mps2[kProfileCapacity] = {};  // active path-constraint bound (7.3)-(7.6)
   double reversal_energy_Jpkg = 0.0;
   int initial_bank_sign = 1;                   // +1 right, -1 left (quadrant rule, fig. 7.20)
   double entry_energy_Jpkg = 0.0;              // normalisation energy

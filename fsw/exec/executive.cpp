@@ -243,7 +243,7 @@ CycleOutput Executive::step(const NavInput& nav) {
   //    large drag error. One request in flight at a time.
   if (last_phase_ == Phase::kReversal && law.phase != Phase::kReversal) replan_after_reversal_ = true;
   last_phase_ = law.phase;
-  if (!in_flight_) {
+  if (!in_flight_ && nav.state.energy_Jpkg > cfg_.replan_floor_energy_Jpkg) {
     const RelativeState& s = nav.state;
     bool want = false;
     if (!first_plan_requested_) {

@@ -66,6 +66,7 @@ struct ExecConfig {
   double replan_drag_error_frac = 0.15;
   double initial_descent_drag_mps2 = 0.05 * 9.80665;  // replan from the captured state once sensed drag exceeds this
   double plan_wait_limit_s = 30.0;          // bound of the lockstep wait for a late plan
+  double replan_floor_energy_Jpkg = 0.0;    // no new plans below this energy (terminal phase)
   PlanMode mode = PlanMode::kLockstep;
 };
 

@@ -40,6 +40,7 @@ std::string GuidanceStack::create(const config::Mission& m, exec::PlanMode mode)
   config.replan_period_s = m.guidance.replan_period_s;
   config.replan_drag_error_frac = m.guidance.replan_drag_error_frac;
   config.initial_descent_drag_mps2 = m.guidance.initial_descent_drag_mps2;
+  config.replan_floor_energy_Jpkg = law->tracker.terminal_energy_Jpkg();
   config.mode = mode;
   st = executive->init(config, *planner, *law);
   if (st != Status::kOk) return std::string("executive init (guidance timing parameters): ") + to_string(st);

@@ -17,6 +17,9 @@ constexpr double kGradedGridDrag_mps2 = 0.1;
 constexpr double kMaxClosedFraction = 0.1;  // below this initial drag the energy grid is graded
 constexpr double kDensityStep_m = 25.0;    // finite-difference step for d ln rho / dr
 constexpr int kRootIterations = 80;
+constexpr double kConstraintMargin = 1.0;  // planned fraction of each path-constraint limit
+constexpr int kTaemBoxSamples = 60;
+constexpr double kCorridorTurnLength_m = 50000.0;  // path length of the corridor's turn to the LOS        // altitude samples of the TAEM band (start-up only)
 
 bool finite_state(const RelativeState& s) {
   return std::isfinite(s.radius_m) && std::isfinite(s.latitude_rad) && std::isfinite(s.longitude_rad) &&
@@ -51,10 +54,12 @@ Status EntryPlanner::init(const config::Mission& mission) {
   crossrange_tol_m_ = g.crossrange_tol_m;
 
   const config::PathConstraints& c = mission.constraints;
-  heat_max_ = c.heat_flux_max_Wpm2;
-  q_alpha_max_ = c.q_alpha_max_Pa_rad;
-  n_max_ = c.load_factor_max_g * kG0_mps2;
-  q_max_ = c.dynamic_pressure_max_Pa;
+  // The corridor is planned with a design margin on every path constraint: the tracker's
+  // transients at drag capture and the on-board/true aerodynamics differences (trim) must fit.
+  heat_max_ = kConstraintMargin * c.heat_flux_max_Wpm2;
+  q_alpha_max_ = kConstraintMargin * c.q_alpha_max_Pa_rad;
+  n_max_ = kConstraintMargin * c.load_factor_max_g * kG0_mps2;
+  q_max_ = kConstraintMargin * c.dynamic_pressure_max_Pa;
   sigma_rate_max_ = c.sigma_rate_max_radps;
   if (!(sigma_rate_max_ > 0.0)) return Status::kInvalidInput;
 
@@ -79,6 +84,8 @@ Status EntryPlanner::init(const config::Mission& mission) {
   taem_lat_ = t.latitude_rad;
   taem_lon_ = t.longitude_rad;
   taem_energy_ = specific_energy_Jpkg(taem_radius_, taem_velocity_);
+  taem_drag_altitude_m_ = taem_box_altitude(mission);
+  e_corridor_ = taem_energy_ + kLateralCorridorSpanFraction * (entry_energy_ - taem_energy_);
   if (!(entry_energy_ > taem_energy_) || !(taem_energy_ > 0.0) || !std::isfinite(entry_.drag_mps2)) {
     return Status::kInvalidInput;
   }
@@ -87,6 +94,30 @@ Status EntryPlanner::init(const config::Mission& mission) {
 }
 
 RelativeState EntryPlanner::entry_state() const { return entry_; }
+
+double EntryPlanner::taem_box_altitude(const config::Mission& mission) const {
+  // Final drag of the profile: the vehicle meets the TAEM energy where the drag equals it, so
+  // that drag sets the TAEM altitude (and, the energy being fixed, the speed and Mach). Rule:
+  // of the altitudes in the TAEM altitude band, take the one whose state at the TAEM energy
+  // lies deepest inside both bands, min over {altitude, Mach} of the normalised distance to
+  // the band edge (the mission altitude itself when no Mach band is given).
+  const config::TaemInterface& t = mission.taem;
+  if (!(t.mach_target > 0.0) || !(t.mach_tol > 0.0) || !(t.mach_tol < config::kNotConstrained) ||
+      !(t.altitude_tol_m > 0.0)) {
+    return t.altitude_m;
+  }
+  double best_h = t.altitude_m, best_depth = -1e300;
+  for (int i = 0; i <= kTaemBoxSamples; ++i) {
+    const double h = t.altitude_m + t.altitude_tol_m * (2.0 * i / kTaemBoxSamples - 1.0);
+    const double v = velocity_from_energy_mps(taem_energy_, kEarthRadius_m + h);
+    if (!(v > 0.0)) continue;
+    const double mach = v / models_.atmosphere().speed_of_sound_mps(h);
+    const double depth = std::fmin(1.0 - std::fabs(h - t.altitude_m) / t.altitude_tol_m,
+                                   1.0 - std::fabs(mach - t.mach_target) / t.mach_tol);
+    if (depth > best_depth) { best_depth = depth; best_h = h; }
+  }
+  return best_h;
+}
 
 // ------------------------------------------------------------------ corridor
 // Energy grid from the planning energy to TAEM. When the profile starts from a near-zero
@@ -347,6 +378,13 @@ void EntryPlanner::rop_derivative(double s_m, const Rop& y, Rop& dy) const {
   // (2.42)-(2.45) multiplied by dE/ds = -D.
   dy.lon = sc * cg / (r * cd);                                              // (2.42)
   dy.lat = cc * cg / r;                                                     // (2.43)
+  if (energy < e_corridor_) {
+    // Lateral corridor phase: the tracker's heading corridor holds the vehicle on a great
+    // circle and averages the lateral lift out, so the trajectory is that circle: (2.44)
+    // without the lift and Coriolis terms.
+    dy.chi = cg * (sd / cd) * sc / r;
+    return;
+  }
   const double c_chi = -2.0 * kEarthRate_radps * (sd - cd * std::tan(gamma) * cc) / (drag * v);  // (2.45)
   dy.chi = drag * (lod_sin / (v * v * cg) - c_chi) + cg * (sd / cd) * sc / r;                    // (2.44)
 }
@@ -424,6 +462,17 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
   Status s = integrate(2.0 * s_total_, false, end);  // base run, no reversal
   if (s != Status::kOk) return s;
   int evaluations = 1;
+  const double f_tol_base = 0.25 * crossrange_tol_m_ / r_mean_;
+  const TrackErrors base = track_errors(from_.latitude_rad, from_.longitude_rad, a_mission_, end.lat, end.lon);
+  if (from_.energy_Jpkg <= e_corridor_ || std::fabs(base.crossrange_rad) < f_tol_base) {
+    // Planning inside the corridor phase, where the tracker steers laterally and a planned
+    // reversal has no effect (or already on target): no reversal to search.
+    s_rev = 2.0 * s_total_;
+    crossrange_rad = base.crossrange_rad;
+    downrange_rad = base.downrange_rad;
+    diag_.reversal_evaluations += evaluations;
+    return Status::kOk;
+  }
   auto crossrange = [&](double s_trial) {
     ++evaluations;
     Rop y{};
@@ -510,7 +559,8 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   breakpoints();
   diag_.di_mps2 = initial_drag_ == InitialDrag::kActual ? d_actual : d_min_[0];
   if (diag_.di_mps2 < kDragFloor_mps2) diag_.di_mps2 = kDragFloor_mps2;
-  diag_.df_mps2 = models_.drag_mps2(alpha_[kGrid - 1], taem_radius_ - kEarthRadius_m, taem_velocity_);
+  diag_.df_mps2 = models_.drag_mps2(alpha_[kGrid - 1], taem_drag_altitude_m_,
+                                    velocity_from_energy_mps(taem_energy_, kEarthRadius_m + taem_drag_altitude_m_));
 
   double s_rev = 0.0;
   double cross = 0.0, down = 0.0;
@@ -582,6 +632,7 @@ void EntryPlanner::fill_output(ReferenceProfile& out) {
     out.sigma_rad[k] = sigma;
     out.heading_rad[k] = chi;
     out.dynamic_pressure_Pa[k] = q_[k];
+    out.drag_max_mps2[k] = d_max_[k];
   }
   diag_.bank_saturated_points = saturated;
   out.reversal_energy_Jpkg = diag_.reversal_energy_Jpkg;

@@ -61,6 +61,8 @@ class EntryPlanner {
   double entry_energy_Jpkg() const { return entry_energy_; }
   double taem_energy_Jpkg() const { return taem_energy_; }
   /// RelativeState at the mission entry interface, drag from the on-board models.
+  /// Altitude of the planned final drag (the TAEM band rule, see the .cpp).
+  double taem_drag_altitude_m() const { return taem_drag_altitude_m_; }
   RelativeState entry_state() const;
   /// Active maximum-drag and minimum-drag (Lmin) corridor of the last plan, on the grid.
   double corridor_max(int k) const { return d_max_[k]; }
@@ -88,6 +90,7 @@ class EntryPlanner {
 
   OnboardModels models_;
   AlphaProfile alpha_profile_;
+  double taem_box_altitude(const config::Mission& mission) const;
   DragProfileKind profile_kind_ = DragProfileKind::kSmooth;
   InitialDrag initial_drag_ = InitialDrag::kActual;
 
@@ -95,6 +98,8 @@ class EntryPlanner {
   RelativeState entry_{};
   double entry_energy_ = 0.0;
   double taem_energy_ = 0.0;
+  double taem_drag_altitude_m_ = 0.0;  // altitude of the planned final drag
+  double e_corridor_ = 0.0;            // below this energy the trajectory is a great circle
   double taem_radius_ = 0.0, taem_velocity_ = 0.0, taem_lat_ = 0.0, taem_lon_ = 0.0;
   double heat_max_ = 0.0, q_alpha_max_ = 0.0, n_max_ = 0.0, q_max_ = 0.0;
   double sigma_rate_max_ = 0.0;

@@ -12,15 +12,45 @@ constexpr double kMinDrag_mps2 = 1e-3;      // below this L/D is not measurable
 constexpr double kMinLiftOverDrag = 1e-3;    // below this the sensed L/D is not used
 constexpr double kMaxSpeed_mps = 12000.0;    // above escape speed: not an entry state
 constexpr double kMaxAccel_mps2 = 100.0 * 9.80665;
-// Terminal phase: last kTerminalSpanFraction of the entry-to-TAEM energy span, lateral
-// logic on a heading-to-aim-point corridor from kTerminalCorridorMax_rad down to _Min_rad.
-constexpr double kTerminalSpanFraction = 0.06;
-constexpr double kTerminalCorridorMax_rad = 6.0 * M_PI / 180.0;
-constexpr double kTerminalCorridorMin_rad = 2.0 * M_PI / 180.0;
-constexpr double kTerminalDragScale = 0.3;        // bound of the range-error drag scaling
-constexpr double kTerminalMinRange_m = 20000.0;   // no scaling closer than this to the aim point
+// Phases by normalised energy span x = (E/E_entry - E_f/E_entry) / (1 - E_f/E_entry):
+//  - lateral heading corridor below x = kLateralCorridorSpanFraction (the planned reversal above),
+//  - terminal range control below x = kTerminalSpanFraction (no replans there, DESIGN §6).
+constexpr double kTerminalSpanFraction = 0.25;
+// Heading corridor half-width, linear in x from kCorridorMax_rad (corridor start) to
+// kCorridorMin_rad (TAEM). The minimum is kept above the heading swing of one reversal late
+// in the flight (a few degrees), so that the corridor does not reverse back and forth.
+constexpr double kCorridorMax_rad = 6.0 * M_PI / 180.0;
+constexpr double kCorridorMin_rad = 3.0 * M_PI / 180.0;
+// Vector field onto the arrival great circle: approach angle chi_inf (2/pi) atan(y / y_s).
+constexpr double kApproachAngleMax_rad = 45.0 * M_PI / 180.0;
+constexpr double kCrossTrackScale_m = 30000.0;
+constexpr double kAimMinRange_m = 1000.0;       // the offset angle is undefined closer than this
+// Final reversal window: the last kFinalReversalWindow reversal durations before TAEM.
+constexpr double kFinalReversalWindow = 2.0;
+// Terminal range control: increment bounded to kTerminalDragScale of the reference drag,
+// frozen closer than kTerminalMinRange_m to the aim point.
+constexpr double kTerminalDragScale = 0.5;
+constexpr double kTerminalMinRange_m = 5000.0;
+// Scheduling of (3.13): full drag-loop bandwidth from kQrefFraction of the plan's largest q.
+constexpr double kQrefFraction = 0.3;
+// Sensed drag-to-model ratio: first-order filter, bounded.
+constexpr double kDragScaleTimeConstant_s = 20.0;
+constexpr double kMinDragScale = 0.5;
+constexpr double kMaxDragScale = 2.0;
+constexpr double kEarthFlattening = 1.0 / 298.257223563;  // WGS-84
 
 double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
+
+// Initial great-circle bearing from point 0 to point 1, clockwise from North.
+double great_circle_bearing(double lat0, double lon0, double lat1, double lon1) {
+  return std::atan2(std::sin(lon1 - lon0) * std::cos(lat1),
+                    std::cos(lat0) * std::sin(lat1) - std::sin(lat0) * std::cos(lat1) * std::cos(lon1 - lon0));
+}
+
+double great_circle_range_m(double lat0, double lon0, double lat1, double lon1) {
+  const double cos_arc = std::sin(lat0) * std::sin(lat1) + std::cos(lat0) * std::cos(lat1) * std::cos(lon1 - lon0);
+  return kEarthRadius_m * std::acos(clamp(cos_arc, -1.0, 1.0));
+}
 
 double wrap_pi(double a) {
   a = std::fmod(a, 2.0 * M_PI);
@@ -48,8 +78,6 @@ TrackerGains derive_gains(const config::Mission& mission) {
   g.k_integral = g.omega0_radps * g.omega0_radps * g.omega0_radps / 20.0;
   g.k_heading = 1.0;
   g.k_heading_integral = 0.0;
-  g.blend_start_e_norm = 0.0;  // set in init() from the TAEM energy (last 15 % of the span)
-  g.blend_min_weight = 0.8;
   if (p.zeta > 0.0) g.zeta = p.zeta;
   if (p.omega0_radps > 0.0) g.omega0_radps = p.omega0_radps;
   if (p.k_integral > 0.0) g.k_integral = p.k_integral;
@@ -77,8 +105,9 @@ Status EntryTracker::init(const config::Mission& mission) {
   taem_energy_Jpkg_ = specific_energy_Jpkg(kEarthRadius_m + mission.taem.altitude_m, mission.taem.velocity_mps);
   if (!(entry_energy_Jpkg_ > taem_energy_Jpkg_)) return Status::kInvalidInput;
   const double e_taem_norm = taem_energy_Jpkg_ / entry_energy_Jpkg_;
-  gains_.blend_start_e_norm = e_taem_norm + 0.15 * (1.0 - e_taem_norm);
   terminal_e_norm_ = e_taem_norm + kTerminalSpanFraction * (1.0 - e_taem_norm);
+  lateral_e_norm_ = e_taem_norm + kLateralCorridorSpanFraction * (1.0 - e_taem_norm);
+  taem_heading_rad_ = mission.taem.heading_rad;
   aim_lat_rad_ = mission.taem.latitude_rad;
   aim_lon_rad_ = mission.taem.longitude_rad;
   initial_descent_drag_mps2_ = mission.guidance.initial_descent_drag_mps2;
@@ -89,6 +118,8 @@ Status EntryTracker::init(const config::Mission& mission) {
   captured_ = false;
   drag_integral_ = 0.0;
   heading_integral_ = 0.0;
+  drag_scale_ = 1.0;
+  final_reversal_done_ = false;
   last_sign_ = 0;
   reversal_until_t_s_ = -1.0;
   initialised_ = true;
@@ -105,7 +136,7 @@ void EntryTracker::set_profile(const ReferenceProfile& profile) {
   // loop reaches full bandwidth once the vehicle is in the dense part of the entry.
   double q_max = 0.0;
   for (int k = 0; k < profile_.n_points; ++k) q_max = std::fmax(q_max, profile_.dynamic_pressure_Pa[k]);
-  q_ref_Pa_ = q_max > 0.0 ? 0.5 * q_max : 1.0;
+  q_ref_Pa_ = q_max > 0.0 ? kQrefFraction * q_max : 1.0;
 }
 
 EntryTracker::RefPoint EntryTracker::reference_at(double energy) {
@@ -134,31 +165,72 @@ EntryTracker::RefPoint EntryTracker::reference_at(double energy) {
   r.q = lerp(p.dynamic_pressure_Pa);
   r.velocity = lerp(p.velocity_mps);
   r.radius = lerp(p.radius_m);
+  r.drag_max = lerp(p.drag_max_mps2);
   return r;
 }
 
-double EntryTracker::planned_range_to_go(double energy, double drag_here) const {
-  // Trapezoidal quadrature of -int dE / D_ref from the current energy to the profile end.
-  const ReferenceProfile& p = profile_;
-  int k = hint_;
-  double range_m = 0.0;
-  double e_prev = energy, inv_prev = drag_here > 0.0 ? 1.0 / drag_here : 0.0;
-  for (int j = k + 1; j < p.n_points; ++j) {
-    if (!(p.drag_mps2[j] > 0.0)) return -1.0;
-    const double inv = 1.0 / p.drag_mps2[j];
-    range_m += 0.5 * (inv_prev + inv) * (e_prev - p.energy_Jpkg[j]);
-    e_prev = p.energy_Jpkg[j];
-    inv_prev = inv;
+EntryTracker::LateralTarget EntryTracker::lateral_target(const RelativeState& s) const {
+  // Arrival line: the great circle through the aim point on the required TAEM heading chi_f.
+  // The offset eps (bearing from the aim point to the vehicle minus the reversed arrival
+  // heading) gives, in the local plane, the cross-track distance y = R sin(eps) and the line's
+  // heading at the vehicle chi_line = lambda - eps (lambda: line of sight to the aim point);
+  // measuring eps at the aim point keeps this valid over thousands of kilometres. The target
+  // heading is a vector field onto the line (Nelson et al. 2007):
+  //   chi_d = chi_line + chi_inf (2/pi) atan(y / y_s),
+  // so the vehicle converges on the line and arrives along it, on chi_f (the heading is
+  // targeted explicitly instead of following from the last reversal).
+  LateralTarget t;
+  t.range_m = great_circle_range_m(s.latitude_rad, s.longitude_rad, aim_lat_rad_, aim_lon_rad_);
+  t.bearing_rad = great_circle_bearing(s.latitude_rad, s.longitude_rad, aim_lat_rad_, aim_lon_rad_);
+  if (t.range_m > kAimMinRange_m) {
+    const double back = great_circle_bearing(aim_lat_rad_, aim_lon_rad_, s.latitude_rad, s.longitude_rad);
+    t.offset_rad = wrap_pi(back - (taem_heading_rad_ + M_PI));
   }
-  return range_m;
+  const double cross_track_m = t.range_m * std::sin(t.offset_rad);
+  t.heading_rad = wrap_pi(t.bearing_rad - t.offset_rad +
+                          kApproachAngleMax_rad * (2.0 / M_PI) * std::atan(cross_track_m / kCrossTrackScale_m));
+  t.along_track_m = t.range_m * std::cos(t.offset_rad);
+  return t;
 }
 
-double EntryTracker::blend_weight(double e_norm) const {
-  const double e_taem = taem_energy_Jpkg_ / entry_energy_Jpkg_;
-  const double e_start = gains_.blend_start_e_norm;
-  if (e_norm >= e_start || e_start <= e_taem) return 1.0;
-  const double x = clamp((e_start - e_norm) / (e_start - e_taem), 0.0, 1.0);
-  return 1.0 - (1.0 - gains_.blend_min_weight) * x;
+EntryTracker::TerminalRange EntryTracker::terminal_range(double energy, double drag_here, double e_t) const {
+  // Trapezoidal quadrature from the current energy to the profile end of S = -int dE / D (C.2)
+  // and dS/dc = -int w / D^2 dE, D = k_f(E) D_ref with the final-drag factor
+  // k_f = 1 + (K - 1)(1 - w) and w = (E - E_f) / (E_t - E_f).
+  const ReferenceProfile& p = profile_;
+  TerminalRange t;
+  const double span = e_t - taem_energy_Jpkg_;
+  if (!(span > 0.0) || !(drag_here > 0.0)) return t;
+  auto weight = [&](double e) { return (e - taem_energy_Jpkg_) / span; };
+  auto scaled = [&](double e, double d) { return d * (1.0 + (drag_scale_ - 1.0) * (1.0 - weight(e))); };
+  double e_prev = energy, inv_prev = 1.0 / scaled(energy, drag_here);
+  double sens_prev = weight(energy) * inv_prev * inv_prev;
+  t.range_m = 0.0;
+  for (int j = hint_ + 1; j < p.n_points; ++j) {
+    if (!(p.drag_mps2[j] > 0.0)) return TerminalRange{};
+    const double inv = 1.0 / scaled(p.energy_Jpkg[j], p.drag_mps2[j]);
+    const double sens = weight(p.energy_Jpkg[j]) * inv * inv;
+    const double de = e_prev - p.energy_Jpkg[j];
+    t.range_m += 0.5 * (inv_prev + inv) * de;
+    t.sensitivity -= 0.5 * (sens_prev + sens) * de;
+    e_prev = p.energy_Jpkg[j];
+    inv_prev = inv;
+    sens_prev = sens;
+  }
+  return t;
+}
+
+void EntryTracker::update_drag_scale(const RelativeState& s, double alpha_rad, double dt_s) {
+  // Ratio of the sensed drag to the on-board model's drag at the navigated height and speed:
+  // the product of the density, drag-coefficient and mass errors (and wind), low-pass filtered.
+  // The on-board altitude is above the R_eq sphere while the air is stratified over the
+  // ellipsoid, so the model is evaluated at the height above the ellipsoid (first order in f).
+  const double slat = std::sin(s.latitude_rad);
+  const double h_ellipsoid_m = s.radius_m - kEarthRadius_m * (1.0 - kEarthFlattening * slat * slat);
+  const double d_model = models_.drag_mps2(alpha_rad, h_ellipsoid_m, s.velocity_mps);
+  if (!(d_model > kMinDrag_mps2) || !(s.drag_mps2 > kMinDrag_mps2)) return;
+  const double ratio = clamp(s.drag_mps2 / d_model, kMinDragScale, kMaxDragScale);
+  drag_scale_ += clamp(dt_s / kDragScaleTimeConstant_s, 0.0, 1.0) * (ratio - drag_scale_);
 }
 
 Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& out) {
@@ -185,25 +257,40 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
 
   RefPoint ref = reference_at(s.energy_Jpkg);
   out.alpha_rad = clamp(ref.alpha, 0.0, alpha_max_rad_);
+  update_drag_scale(s, out.alpha_rad, dt_s);
   const double V = s.velocity_mps, D = s.drag_mps2, r = s.radius_m;
   const double g = gravity_mps2(r);
   const double slat = std::sin(s.latitude_rad), clat = std::cos(s.latitude_rad);
   const bool terminal = e_norm < terminal_e_norm_;
   if (terminal) {
-    // Terminal range control (as the Shuttle's drag reference update): the range the plan
-    // still flies from here, S = -int dE / D_ref (C.2), against the great-circle distance to
-    // the aim point; the drag reference is scaled by their ratio so a range error left by
-    // the last plan is removed continuously instead of at the next replan.
-    const double cos_arc = slat * std::sin(aim_lat_rad_) +
-                           clat * std::cos(aim_lat_rad_) * std::cos(aim_lon_rad_ - s.longitude_rad);
-    const double range_to_aim_m = kEarthRadius_m * std::acos(clamp(cos_arc, -1.0, 1.0));
-    const double planned_range_m = planned_range_to_go(s.energy_Jpkg, ref.drag);
-    if (range_to_aim_m > kTerminalMinRange_m && planned_range_m > 0.0) {
-      const double scale = clamp(planned_range_m / range_to_aim_m, 1.0 - kTerminalDragScale, 1.0 + kTerminalDragScale);
-      ref.drag *= scale;
-      ref.drag_prime *= scale;
-      ref.drag_second *= scale;
+    // Terminal range control (drag reference update, as the Shuttle's): the range the plan
+    // still flies from here, S = -int dE / D_ref (C.2), is matched to the great-circle
+    // distance to the aim point by a drag increment linear in energy that vanishes at the
+    // TAEM energy, dD(E) = c w(E), w = (E - E_f) / (E_t - E_f): the final drag, which sets
+    // the TAEM altitude, stays the plan's. c follows from the linearised range
+    // dS/dc = -int w / D_ref^2 dE, re-evaluated every cycle, bounded to kTerminalDragScale D.
+    // The final drag itself is multiplied by the sensed drag-to-model ratio K (blended in
+    // over the phase), so the TAEM energy is met at the planned altitude in the true air.
+    const double e_t = terminal_e_norm_ * entry_energy_Jpkg_;
+    const double w_here = clamp((s.energy_Jpkg - taem_energy_Jpkg_) / (e_t - taem_energy_Jpkg_), 0.0, 1.0);
+    const double dw_dE = 1.0 / (e_t - taem_energy_Jpkg_);
+    const double k_f = 1.0 + (drag_scale_ - 1.0) * (1.0 - w_here);
+    const TerminalRange tr = terminal_range(s.energy_Jpkg, ref.drag, e_t);
+    // Range to go along the arrival line: negative once the aim point has been passed.
+    const double range_to_aim_m = lateral_target(s).along_track_m;
+    double c = 0.0;
+    if (range_to_aim_m > kTerminalMinRange_m && tr.range_m > 0.0 && tr.sensitivity < 0.0) {
+      const double c_max = kTerminalDragScale * ref.drag;
+      c = clamp((range_to_aim_m - tr.range_m) / tr.sensitivity, -c_max, c_max);
     }
+    const double d0 = ref.drag, d0p = ref.drag_prime;
+    // The increment never takes the reference past the plan's path-constraint bound (scaled
+    // with the sensed drag ratio like the final drag, since the bound is on q, heat flux, ...).
+    const double d_bound = ref.drag_max > 0.0 ? ref.drag_max * drag_scale_ : 1e300;
+    if (d0 * k_f + c * w_here > d_bound && w_here > 0.0) c = (d_bound - d0 * k_f) / w_here;
+    ref.drag = d0 * k_f + c * w_here;
+    ref.drag_prime = d0p * k_f + (c - (drag_scale_ - 1.0) * d0) * dw_dE;
+    ref.drag_second = ref.drag_second * k_f - 2.0 * (drag_scale_ - 1.0) * d0p * dw_dE;
   }
   const double sg = std::sin(s.flight_path_rad), cg = std::cos(s.flight_path_rad);
   const double V2 = V * V;
@@ -270,39 +357,53 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   const double u_chi = -V2 * cg * (chi_prime_cmd + cg * tan_lat * std::sin(chi) / (r * D) - c_chi);
   const double sigma_chi = std::asin(clamp(u_chi / lod, -1.0, 1.0));         // (3.21)
 
-  // Reversal: a sign change of the reference bank is flown open loop at the maximum rate.
+  // Lateral logic. Above the corridor phase the bank sign is the plan's (one planned
+  // reversal, method 3 of §7.4); below it, the sign keeps the heading within a corridor
+  // around the target heading of lateral_target, narrowing towards TAEM (Shuttle-style
+  // lateral logic aimed along the arrival line). A sign change is flown as a reversal, open
+  // loop at the maximum bank rate, t_rev = 2 |sigma| / sigma_rate_max long.
   int sign_ref = ref.sigma >= 0.0 ? 1 : -1;
-  if (terminal && last_sign_ != 0) {
-    // Terminal heading corridor: close to TAEM the bank sign turns the vehicle towards the
-    // aim point, reversing only when the heading error to it leaves a corridor that narrows
-    // towards the interface (Shuttle-style lateral logic; a planned reversal there would be
-    // an uncorrectable lift-up pulse just before the interface).
-    const double bearing = std::atan2(std::sin(aim_lon_rad_ - s.longitude_rad) * std::cos(aim_lat_rad_),
-                                      clat * std::sin(aim_lat_rad_) -
-                                          slat * std::cos(aim_lat_rad_) * std::cos(aim_lon_rad_ - s.longitude_rad));
-    const double err_to_aim = wrap_pi(chi - bearing);
+  const bool lateral_corridor = e_norm < lateral_e_norm_;
+  if (lateral_corridor && last_sign_ != 0) {
+    const double err_to_target = wrap_pi(chi - lateral_target(s).heading_rad);
     const double e_taem_norm = taem_energy_Jpkg_ / entry_energy_Jpkg_;
-    const double x = clamp((e_norm - e_taem_norm) / (terminal_e_norm_ - e_taem_norm), 0.0, 1.0);
-    const double corridor = kTerminalCorridorMin_rad + (kTerminalCorridorMax_rad - kTerminalCorridorMin_rad) * x;
+    const double x = clamp((e_norm - e_taem_norm) / (lateral_e_norm_ - e_taem_norm), 0.0, 1.0);
+    const double corridor = kCorridorMin_rad + (kCorridorMax_rad - kCorridorMin_rad) * x;
+    const double t_rev_s = 2.0 * sigma_d / sigma_rate_max_radps_;
+    const double t_go_s = (s.energy_Jpkg - taem_energy_Jpkg_) / std::fmax(D * V, 1e-6);  // E' = -D V
     sign_ref = last_sign_;
-    if (err_to_aim > corridor) sign_ref = -1;        // heading right of the aim point: bank left
-    else if (err_to_aim < -corridor) sign_ref = 1;   // heading left of it: bank right
-    out.heading_err_rad = err_to_aim;
+    if (t_go_s < kFinalReversalWindow * t_rev_s) {
+      // Final reversal timing: with the turn rate w = L sin|sigma| / (V cos gamma) held, the
+      // heading error at TAEM is e + s w t_go without a reversal and e + s w (t_rev - t_go)
+      // with one (symmetric) started now. The one last reversal starts when the latter
+      // reaches zero, so that the vehicle arrives on the target heading; a corridor reversal
+      // this late would leave it mid-swing.
+      const double turn_rate = s.lift_mps2 * std::sin(sigma_d) / (V * cg);
+      if (!reversing && !final_reversal_done_ && last_sign_ * err_to_target + turn_rate * (t_rev_s - t_go_s) >= 0.0) {
+        sign_ref = -last_sign_;
+        final_reversal_done_ = true;
+      }
+    } else if (!reversing) {
+      if (last_sign_ > 0 && err_to_target > corridor) sign_ref = -1;        // right of the target: bank left
+      else if (last_sign_ < 0 && err_to_target < -corridor) sign_ref = 1;   // left of it: bank right
+    }
+    out.heading_err_rad = err_to_target;
   }
   if (last_sign_ != 0 && sign_ref != last_sign_) {
     reversal_until_t_s_ = s.t_s + 2.0 * sigma_d / sigma_rate_max_radps_ + dt_s;
   }
   last_sign_ = sign_ref;
 
-  const double w = (reversing || terminal) ? 1.0 : blend_weight(e_norm);
-  out.sigma_rad = w * sign_ref * sigma_d + (1.0 - w) * sigma_chi;            // (3.22)
+  // (3.22) with w = 1: the bank sign comes from the plan or the heading corridor; the heading
+  // loop's bank sigma_chi (3.21) is computed and reported for telemetry only.
+  out.sigma_rad = sign_ref * sigma_d;
   if (!std::isfinite(out.sigma_rad) || !std::isfinite(out.alpha_rad)) return Status::kNonFinite;
   out.sigma_d_rad = sigma_d;
   out.sigma_chi_rad = sigma_chi;
   out.phase = s.t_s < reversal_until_t_s_ ? Phase::kReversal : Phase::kTracking;
   out.drag_ref_mps2 = ref.drag;
   out.drag_err_mps2 = err;
-  if (!terminal) out.heading_err_rad = heading_err;
+  if (!lateral_corridor) out.heading_err_rad = heading_err;
   return Status::kOk;
 }
 

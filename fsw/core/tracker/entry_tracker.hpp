@@ -5,12 +5,19 @@
 //                        natural frequency scheduled on dynamic pressure (3.13);
 //                        D'' = a + b u_D (3.10) gives u_D = (L/D) cos(sigma), sigma_D (3.20);
 //   heading loop (3.19)  chi' error dynamics through (3.11) gives u_chi, sigma_chi (3.21);
-//   blending     (3.22)  sigma = w(E) sign(sigma_ref) sigma_D + (1 - w(E)) sigma_chi;
-//   reversal             sign changes of the reference are flown open loop at the maximum
-//                        bank rate (the rate filter after the tracker limits the rate), with
-//                        the drag integrator frozen;
-//   terminal phase       over the last 6 % of the energy span the bank sign follows a
-//                        heading-to-aim-point corridor instead of the planned reversal.
+//   bank sign    (3.22) with w = 1: sigma = s sigma_D; the heading loop's sigma_chi is reported
+//                        only. The sign s is the plan's (one reversal, §7.4) until the lateral
+//                        corridor phase (last 30 % of the energy span), then a heading corridor
+//                        around a vector field onto the arrival great circle (the circle through
+//                        the aim point on the required TAEM heading), 6 -> 3 deg, with one last
+//                        reversal timed so that the heading at TAEM is the target heading;
+//   reversal             sign changes are flown open loop at the maximum bank rate (the rate
+//                        filter after the tracker limits the rate), drag integrator frozen;
+//   terminal range       over the last 25 % of the energy span the drag reference gets a
+//                        range-to-go increment linear in energy that vanishes at TAEM, and the
+//                        final drag is scaled by the sensed drag-to-model ratio, so that the
+//                        aim point is reached at the TAEM altitude in the true atmosphere;
+//                        the increment stays within the plan's path-constraint bound.
 // Before the first plan, and until the sensed drag passes the initial-descent threshold,
 // the tracker holds the profile alpha and wings level (flight practice, DESIGN §6).
 // Gains are derived from vehicle-independent physics (see derive_gains) unless the mission
@@ -32,8 +39,6 @@ struct TrackerGains {
   double k_integral = 0.0;              // time-domain integral gain [1/s^3]
   double k_heading = 0.0;               // heading loop gain factor k2 of (3.19)
   double k_heading_integral = 0.0;      // k3 of (3.19)
-  double blend_start_e_norm = 0.0;      // below this energy the heading loop is blended in
-  double blend_min_weight = 1.0;        // w(E) at the TAEM energy
 };
 
 struct TrackerOutput {
@@ -56,7 +61,7 @@ struct TrackerOutput {
 ///  - zeta = 1/sqrt(2) (no resonance peak, thesis §8.3);
 ///  - integral gain omega0^3 / 20 (integral pole a decade below the loop);
 ///  - heading loop k2 = 1 with the scheduled omega, k3 = 0;
-///  - blending of the heading loop over the last 15 % of the energy span, down to w = 0.8.
+///  - drag-loop bandwidth scheduled (3.13) with q_ref = 0.3 of the plan's largest q.
 /// Non-zero mission values (guidance.zeta, omega0_radps, ...) override the rule.
 TrackerGains derive_gains(const config::Mission& mission);
 
@@ -70,6 +75,10 @@ class EntryTracker {
 
   const TrackerGains& gains() const { return gains_; }
   const ReferenceProfile& profile() const { return profile_; }
+  /// Filtered ratio of the sensed drag to the on-board model's (density x C_D / mass error).
+  double drag_scale() const { return drag_scale_; }
+  /// Start of the terminal phase (range control in the tracker).
+  double terminal_energy_Jpkg() const { return terminal_e_norm_ * entry_energy_Jpkg_; }
 
   /// omega(q) of (3.13): omega0 [2 (q/q_ref) - (q/q_ref)^2] below q_ref, omega0 above.
   static double scheduled_omega(double omega0, double q_Pa, double q_ref_Pa);
@@ -77,12 +86,23 @@ class EntryTracker {
  private:
   struct RefPoint {
     double drag = 0, drag_prime = 0, drag_second = 0, a = 0, b = 0, gamma = 0, alpha = 0;
-    double lod = 0, sigma = 0, heading = 0, heading_prime = 0, q = 0, velocity = 0, radius = 0;
+    double lod = 0, sigma = 0, heading = 0, heading_prime = 0, q = 0, velocity = 0, radius = 0, drag_max = 0;
   };
   RefPoint reference_at(double energy_Jpkg);
-  double blend_weight(double e_norm) const;
-  /// -int dE / D_ref from `energy` to the end of the profile (C.2); negative if undefined.
-  double planned_range_to_go(double energy, double drag_here) const;
+  struct TerminalRange {
+    double range_m = -1.0;     // range to the end of the profile (C.2); < 0: undefined
+    double sensitivity = 0.0;  // d range / d c of the terminal drag increment [m per m/s^2]
+  };
+  TerminalRange terminal_range(double energy, double drag_here, double e_t) const;
+  struct LateralTarget {
+    double range_m = 0.0;       // great-circle distance to the aim point
+    double bearing_rad = 0.0;   // line of sight to the aim point
+    double heading_rad = 0.0;   // heading of the arc that arrives on the required heading
+    double offset_rad = 0.0;    // eps: bearing aim->vehicle minus the reversed arrival heading
+    double along_track_m = 0.0; // range to go along the arrival line (< 0: aim point passed)
+  };
+  LateralTarget lateral_target(const RelativeState& s) const;
+  void update_drag_scale(const RelativeState& s, double alpha_rad, double dt_s);
 
   OnboardModels models_;
   AlphaProfile alpha_profile_;
@@ -96,6 +116,8 @@ class EntryTracker {
   double terminal_e_norm_ = 0.0;    // terminal phase below this normalised energy
   double aim_lat_rad_ = 0.0;        // TAEM aim point
   double aim_lon_rad_ = 0.0;
+  double taem_heading_rad_ = 0.0;   // required arrival heading
+  double lateral_e_norm_ = 0.0;     // lateral heading corridor below this normalised energy
   bool initialised_ = false;
 
   ReferenceProfile profile_;
@@ -104,6 +126,8 @@ class EntryTracker {
   bool captured_ = false;           // initial descent over
   double drag_integral_ = 0.0;      // int (D - D_ref) dt
   double heading_integral_ = 0.0;   // int (chi_ref - chi) dE
+  double drag_scale_ = 1.0;         // sensed drag / model drag, filtered
+  bool final_reversal_done_ = false;
   int last_sign_ = 0;
   double reversal_until_t_s_ = -1.0;
 };
