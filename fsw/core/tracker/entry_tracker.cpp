@@ -108,6 +108,7 @@ Status EntryTracker::init(const config::Mission& mission) {
   terminal_e_norm_ = e_taem_norm + kTerminalSpanFraction * (1.0 - e_taem_norm);
   lateral_e_norm_ = e_taem_norm + kLateralCorridorSpanFraction * (1.0 - e_taem_norm);
   taem_heading_rad_ = mission.taem.heading_rad;
+  taem_velocity_mps_ = mission.taem.velocity_mps;
   aim_lat_rad_ = mission.taem.latitude_rad;
   aim_lon_rad_ = mission.taem.longitude_rad;
   initial_descent_drag_mps2_ = mission.guidance.initial_descent_drag_mps2;
@@ -373,13 +374,22 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     const double t_go_s = (s.energy_Jpkg - taem_energy_Jpkg_) / std::fmax(D * V, 1e-6);  // E' = -D V
     sign_ref = last_sign_;
     if (t_go_s < kFinalReversalWindow * t_rev_s) {
-      // Final reversal timing: with the turn rate w = L sin|sigma| / (V cos gamma) held, the
-      // heading error at TAEM is e + s w t_go without a reversal and e + s w (t_rev - t_go)
-      // with one (symmetric) started now. The one last reversal starts when the latter
-      // reaches zero, so that the vehicle arrives on the target heading; a corridor reversal
-      // this late would leave it mid-swing.
+      // Final reversal timing: the turn rate w = L sin|sigma| / (V cos gamma) grows as 1/V
+      // while V falls (about linearly in time) to the TAEM speed, so the heading turned over
+      // [t1, t2] is W(t1, t2) = w V t_go / (V - V_f) ln(V(t1) / V(t2)). A symmetric reversal
+      // started now turns s W(0, t_rev/2) and then -s W(t_rev/2, t_go): the one last
+      // reversal starts when the heading error at TAEM it leads to reaches zero, so that the
+      // vehicle arrives on the target heading (a corridor reversal this late would leave it
+      // mid-swing).
       const double turn_rate = s.lift_mps2 * std::sin(sigma_d) / (V * cg);
-      if (!reversing && !final_reversal_done_ && last_sign_ * err_to_target + turn_rate * (t_rev_s - t_go_s) >= 0.0) {
+      const double v_f = std::fmin(taem_velocity_mps_, 0.99 * V);
+      auto speed_at = [&](double t) { return V - (V - v_f) * clamp(t / t_go_s, 0.0, 1.0); };
+      auto turned = [&](double t1, double t2) {
+        return turn_rate * V * t_go_s / (V - v_f) * std::log(speed_at(t1) / speed_at(t2));
+      };
+      const double half_rev_s = std::fmin(0.5 * t_rev_s, t_go_s);
+      if (!reversing && !final_reversal_done_ &&
+          last_sign_ * err_to_target + turned(0.0, half_rev_s) - turned(half_rev_s, t_go_s) >= 0.0) {
         sign_ref = -last_sign_;
         final_reversal_done_ = true;
       }

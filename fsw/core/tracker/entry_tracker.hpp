@@ -117,6 +117,7 @@ class EntryTracker {
   double aim_lat_rad_ = 0.0;        // TAEM aim point
   double aim_lon_rad_ = 0.0;
   double taem_heading_rad_ = 0.0;   // required arrival heading
+  double taem_velocity_mps_ = 0.0;  // TAEM interface speed
   double lateral_e_norm_ = 0.0;     // lateral heading corridor below this normalised energy
   bool initialised_ = false;
 
