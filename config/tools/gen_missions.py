@@ -163,3 +163,13 @@ wind_profile = "../environment/earthgram_nominal_wind.txt"
     os.makedirs(os.path.join(os.path.dirname(__file__), "..", "missions"), exist_ok=True)
     open(os.path.join(os.path.dirname(__file__), "..", "missions", name + ".toml"), "w").write(s)
     print(name, "TAEM heading", round(head, 3))
+    if name == "x33":
+        # Variant without a hand-made alpha profile: planned at guidance start-up (thesis ch. 6).
+        import re
+        v = s.replace('name = "x33"', 'name = "x33_planned_alpha"', 1)
+        v = re.sub(r"\[alpha_profile\]\n#[^\n]*\nenergy = [^\n]*\nalpha_deg = [^\n]*\n",
+                   "[alpha_profile]\n# No hand-made profile: planned at guidance start-up by the angle-of-attack planner\n"
+                   "# (thesis ch. 6) with its default shaping rule (fsw/guidance/alpha_profile_source.hpp).\n"
+                   "source = \"planned\"\n", v, count=1)
+        assert 'source = "planned"' in v
+        open(os.path.join(os.path.dirname(__file__), "..", "missions", "x33_planned_alpha.toml"), "w").write(v)

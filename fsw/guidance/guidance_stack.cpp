@@ -1,5 +1,6 @@
 #include "guidance/guidance_stack.hpp"
 
+#include "guidance/alpha_profile_source.hpp"
 #include "reentry/config/mission.hpp"
 
 namespace reentry::fsw {
@@ -21,7 +22,17 @@ Status TrackerLaw::step(const RelativeState& s, double dt_s, bool /*has_profile*
   return Status::kOk;
 }
 
-std::string GuidanceStack::create(const config::Mission& m, exec::PlanMode mode) {
+std::string GuidanceStack::create(const config::Mission& mission, exec::PlanMode mode) {
+  // A planned alpha profile is planned here, at start-up, on a copy of the mission.
+  const config::Mission* source = &mission;
+  config::Mission planned;
+  if (mission.alpha_profile_planned && mission.alpha_profile.x.empty()) {
+    planned = mission;
+    const std::string err = resolve_alpha_profile(planned);
+    if (!err.empty()) return err;
+    source = &planned;
+  }
+  const config::Mission& m = *source;
   const double dt_s = 1.0 / m.guidance.gnc_rate_hz;
   planner = std::make_unique<PlannerAdapter>();
   law = std::make_unique<TrackerLaw>();

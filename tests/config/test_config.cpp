@@ -223,6 +223,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"taem_energy", false, "velocity_mps = 918.8", "velocity_mps = 9000.0", "taem.velocity_mps", "9000"},
         BadCase{"alpha_cover", false, "energy = [0.000,", "energy = [0.100,", "alpha_profile.energy", "0.1"},
         BadCase{"alpha_monotonic", false, "0.120, 0.414", "0.414, 0.120", "alpha_profile.energy[2]", "0.12"},
+        BadCase{"alpha_source_enum", false, "[alpha_profile]\n", "[alpha_profile]\nsource = \"guess\"\n",
+                "alpha_profile.source", "\"guess\""},
+        BadCase{"alpha_planned_with_table", false, "[alpha_profile]\n", "[alpha_profile]\nsource = \"planned\"\n",
+                "alpha_profile.energy", "not allowed"},
         BadCase{"parse_error", false, "[guidance]", "[guidance", "parse error", "line"},
         BadCase{"wind_order", false, "wind_scale_min = 0.0", "wind_scale_min = 2.0", "dispersions.wind_scale_max", "1.5"},
         BadCase{"negative_mass", true, "mass_kg = 37650.0", "mass_kg = -1.0", "vehicle.mass_kg", "-1"},
@@ -233,6 +237,16 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"policy_enum", true, "out_of_range = \"clamp\"", "out_of_range = \"wrap\"", "aero.out_of_range", "\"wrap\""},
         BadCase{"negative_cd", true, "cd = [\n  [0.200841", "cd = [\n  [-0.200841", "aero.cd[0][0]", "-0.200841"}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return std::string(info.param.label); });
+
+TEST(ConfigLoad, PlannedAlphaProfileNeedsNoTable) {
+  const LoadResult r = load_mission("x33_planned_alpha");
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.mission.alpha_profile_planned);
+  EXPECT_TRUE(r.mission.alpha_profile.x.empty());
+  const LoadResult table = load_mission("x33");
+  ASSERT_TRUE(table.ok) << table.error;
+  EXPECT_FALSE(table.mission.alpha_profile_planned);
+}
 
 TEST(ConfigLoad, MissingRowCountIsRejected) {
   TempMission t;

@@ -1,6 +1,7 @@
 // reentry_plan --mission <name|file> [--profile-out plan.csv] [--drag-profile three_segment|smooth]
 //              [--initial-drag actual|lmin]
 // Plans from the mission's entry state (drag from the on-board models) and prints ONE JSON line.
+#include "guidance/alpha_profile_source.hpp"
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -63,6 +64,11 @@ int main(int argc, char** argv) {
   reentry::config::Mission& mission = loaded.mission;
   if (!drag_profile.empty()) mission.guidance.drag_profile = drag_profile;
   if (!initial_drag.empty()) mission.guidance.initial_drag = initial_drag;
+  const std::string alpha_error = reentry::fsw::resolve_alpha_profile(mission);
+  if (!alpha_error.empty()) {
+    std::cerr << "reentry_plan: " << alpha_error << '\n';
+    return 2;
+  }
 
   auto planner = std::make_unique<reentry::fsw::EntryPlanner>();  // large fixed arrays: not on the stack
   const reentry::fsw::Status init_status = planner->init(mission);

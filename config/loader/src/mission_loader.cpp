@@ -472,8 +472,14 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
   c.finish();
 
   Reader ap = top.sub("alpha_profile");
-  m.alpha_profile.x = ap.numbers("energy", true, 0.0, 2.0);
-  m.alpha_profile.y = ap.numbers("alpha_deg", false, 0.0, 90.0);
+  m.alpha_profile_planned = ap.choice("source", {"table", "planned"}, false, "table") == "planned";
+  if (m.alpha_profile_planned) {
+    if (ap.has("energy")) ap.fail("energy", "not allowed with source = \"planned\" (the profile is planned)");
+    if (ap.has("alpha_deg")) ap.fail("alpha_deg", "not allowed with source = \"planned\" (the profile is planned)");
+  } else {
+    m.alpha_profile.x = ap.numbers("energy", true, 0.0, 2.0);
+    m.alpha_profile.y = ap.numbers("alpha_deg", false, 0.0, 90.0);
+  }
   for (double& a : m.alpha_profile.y) a *= kDegToRad;
   if (!sink.failed() && m.alpha_profile.x.size() != m.alpha_profile.y.size())
     ap.fail("alpha_deg", "has " + std::to_string(m.alpha_profile.y.size()) + " values but energy has " +
@@ -567,7 +573,7 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
     return;
   }
   const double e_ratio = e_taem / e_entry;
-  if (m.alpha_profile.x.front() > e_ratio || m.alpha_profile.x.back() < 1.0) {
+  if (!m.alpha_profile_planned && (m.alpha_profile.x.front() > e_ratio || m.alpha_profile.x.back() < 1.0)) {
     ap.fail("energy", "range [" + fmt_double(m.alpha_profile.x.front()) + ", " +
                           fmt_double(m.alpha_profile.x.back()) + "] does not cover [E_taem/E_entry = " +
                           fmt_double(e_ratio) + ", 1]");

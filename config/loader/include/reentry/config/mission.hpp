@@ -170,6 +170,9 @@ struct Mission {
   TaemInterface taem;
   PathConstraints constraints;
   Table1D alpha_profile;                 // alpha_rad over normalised energy E/E_entry (x increasing)
+  // [alpha_profile] source = "planned": no table in the file; the guidance plans the profile at
+  // start-up with the angle-of-attack planner (thesis ch. 6) and fills alpha_profile.
+  bool alpha_profile_planned = false;
   GuidanceParams guidance;
   SimParams sim;
   Dispersions dispersions;

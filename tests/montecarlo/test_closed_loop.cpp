@@ -1,0 +1,81 @@
+// Closed-loop missions flown in process (truth simulator + guidance stack), judged by the
+// truth-side verdict (thesis 3.1.2 tolerances in the mission files), and the planned angle-of-
+// attack profile of a mission without a hand-made one.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "closed_loop.hpp"
+#include "guidance/alpha_profile_source.hpp"
+#include "reentry/config/mission.hpp"
+
+namespace reentry {
+namespace {
+
+config::Mission load(const std::string& name) {
+  const config::LoadResult r = config::load_mission(name);
+  EXPECT_TRUE(r.ok) << r.error;
+  return r.mission;
+}
+
+TEST(ClosedLoop, X33NominalReachesTaemWithinEveryTolerance) {
+  const config::Mission m = load("x33");
+  const tools::ClosedLoopResult r = tools::run_closed_loop(m, 1, false);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.summary.event, truth::SimEvent::kTaemEnergy);
+  for (const auto& v : r.verdict.violations) ADD_FAILURE() << "violation: " << v;
+  EXPECT_TRUE(r.verdict.success);
+  EXPECT_LT(std::fabs(r.verdict.heading_err_rad), m.taem.heading_tol_rad);
+  // In-flight replans may fail (the executive keeps the active plan); most must succeed.
+  EXPECT_GT(r.plans_adopted, 3 * r.planner_failures);
+}
+
+TEST(ClosedLoop, HorusNominalArrivesAtTheAimPointOnTheRequiredHeading) {
+  // HORUS still violates the heat-flux limit at drag capture and ends slightly below the Mach
+  // band (see README status); position and heading are checked here.
+  const config::Mission m = load("horus");
+  const tools::ClosedLoopResult r = tools::run_closed_loop(m, 1, false);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.summary.event, truth::SimEvent::kTaemEnergy);
+  EXPECT_LT(r.verdict.taem_miss_m, m.taem.range_tol_m);
+  EXPECT_LT(std::fabs(r.verdict.heading_err_rad), m.taem.heading_tol_rad);
+  EXPECT_LT(std::fabs(r.verdict.altitude_err_m), m.taem.altitude_tol_m);
+}
+
+TEST(PlannedAlpha, ProfileCoversTheEnergyRangeMonotoneWithinAlphaMax) {
+  config::Mission m = load("x33_planned_alpha");
+  ASSERT_TRUE(m.alpha_profile_planned);
+  ASSERT_EQ(fsw::resolve_alpha_profile(m), "");
+  const auto& t = m.alpha_profile;
+  ASSERT_GE(t.x.size(), 2u);
+  ASSERT_EQ(t.x.size(), t.y.size());
+  EXPECT_EQ(t.x.front(), 0.0);
+  EXPECT_EQ(t.x.back(), 1.0);
+  for (size_t i = 1; i < t.x.size(); ++i) {
+    EXPECT_GT(t.x[i], t.x[i - 1]) << i;
+    EXPECT_GE(t.y[i], t.y[i - 1] - 1e-12) << i;  // alpha does not grow as energy falls (ch. 6)
+  }
+  for (double a : t.y) {
+    EXPECT_GT(a, 0.0);
+    EXPECT_LE(a, m.constraints.alpha_max_rad);
+  }
+  // A table mission is left alone.
+  config::Mission table = load("x33");
+  const auto before = table.alpha_profile.y;
+  EXPECT_EQ(fsw::resolve_alpha_profile(table), "");
+  EXPECT_EQ(table.alpha_profile.y, before);
+}
+
+TEST(PlannedAlpha, X33FliesToTheTaemEnergyWithThePlannedProfile) {
+  // The guidance plans the profile at start-up; the flight reaches the TAEM energy (it does not
+  // yet meet every tolerance: see README status).
+  const config::Mission m = load("x33_planned_alpha");
+  const tools::ClosedLoopResult r = tools::run_closed_loop(m, 1, false);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.summary.event, truth::SimEvent::kTaemEnergy);
+  EXPECT_GE(r.plans_adopted, 2);
+  EXPECT_LT(r.verdict.taem_miss_m, 50e3);
+}
+
+}  // namespace
+}  // namespace reentry
