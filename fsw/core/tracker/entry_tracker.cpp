@@ -33,6 +33,15 @@ constexpr double kTerminalDragScale = 0.5;
 constexpr double kTerminalMinRange_m = 5000.0;
 // Scheduling of (3.13): full drag-loop bandwidth from kQrefFraction of the plan's largest q.
 constexpr double kQrefFraction = 0.3;
+// Alpha modulation in reversals: at most kAlphaModulationMax_rad below the profile, lift kept
+// at no less than kMinLiftRatio of the profile's, roll model led by the filter lag; only while
+// the drag reference is below kModulationBoundMargin of the path-constraint bound, so that the
+// range control can still add the drag the modulation costs.
+constexpr double kAlphaModulationMax_rad = 15.0 * M_PI / 180.0;
+constexpr double kMinLiftRatio = 0.3;
+constexpr double kAlphaModulationLead_s = 1.0;
+constexpr double kModulationBoundMargin = 0.85;
+constexpr double kDegree_rad = M_PI / 180.0;
 // Sensed drag-to-model ratio: first-order filter, bounded.
 constexpr double kDragScaleTimeConstant_s = 20.0;
 constexpr double kMinDragScale = 0.5;
@@ -123,6 +132,8 @@ Status EntryTracker::init(const config::Mission& mission) {
   final_reversal_done_ = false;
   last_sign_ = 0;
   reversal_until_t_s_ = -1.0;
+  reversal_start_t_s_ = -1.0;
+  reversal_sigma0_rad_ = 0.0;
   initialised_ = true;
   return Status::kOk;
 }
@@ -221,6 +232,50 @@ EntryTracker::TerminalRange EntryTracker::terminal_range(double energy, double d
   return t;
 }
 
+bool EntryTracker::modulation_allowed(double drag_ref, double drag_max) const {
+  return !(drag_max > 0.0) || drag_ref < kModulationBoundMargin * drag_max * drag_scale_;
+}
+
+double EntryTracker::modulated_alpha(double alpha_rad, double mach, double lift_ratio) const {
+  // alpha with C_L(alpha) = lift_ratio C_L(alpha_ref), by bisection below alpha_ref (bounded).
+  const double cl_ref = models_.aero().cl(alpha_rad, mach);
+  if (!(lift_ratio < 1.0) || !(cl_ref > 0.0)) return alpha_rad;
+  double lo = std::fmax(0.0, alpha_rad - kAlphaModulationMax_rad), hi = alpha_rad;
+  // Only where lowering alpha lowers the lift (below alpha(C_L max)) and can reach the ratio;
+  // elsewhere a lower alpha would only cost drag.
+  if (!(models_.aero().cl(alpha_rad - kDegree_rad, mach) < cl_ref) || !(models_.aero().cl(lo, mach) < lift_ratio * cl_ref)) {
+    return alpha_rad;
+  }
+  for (int i = 0; i < 30; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (models_.aero().cl(mid, mach) > lift_ratio * cl_ref) hi = mid; else lo = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+double EntryTracker::reversal_lift_ratio(double sigma0_rad, double t_rel_s) const {
+  // cos(sigma0) / cos(sigma(t)) for the rate-limited roll sigma(t) = sigma0 - rate t, bounded.
+  const double sigma_now = std::fabs(sigma0_rad - sigma_rate_max_radps_ * t_rel_s);
+  const double c_now = std::cos(std::fmin(sigma_now, 0.5 * M_PI));
+  return c_now > 0.0 ? clamp(std::cos(sigma0_rad) / c_now, kMinLiftRatio, 1.0) : 1.0;
+}
+
+double EntryTracker::reversal_range_extension_m(const RelativeState& s, double alpha_rad, double sigma0_rad) const {
+  // Range added by one modulated reversal flown now: V int (C_D(alpha) / C_D(alpha_mod(t)) - 1) dt.
+  if (!(sigma0_rad > 0.0)) return 0.0;
+  const double mach = models_.mach(s.altitude_m, s.velocity_mps);
+  const double cd_ref = models_.aero().cd(alpha_rad, mach);
+  const double t_rev = 2.0 * sigma0_rad / sigma_rate_max_radps_;
+  constexpr int kSamples = 20;
+  double extension = 0.0;
+  for (int i = 0; i < kSamples; ++i) {
+    const double t = (i + 0.5) * t_rev / kSamples;
+    const double cd = models_.aero().cd(modulated_alpha(alpha_rad, mach, reversal_lift_ratio(sigma0_rad, t)), mach);
+    if (cd > 0.0) extension += (cd_ref / cd - 1.0) * s.velocity_mps * t_rev / kSamples;
+  }
+  return extension;
+}
+
 void EntryTracker::update_drag_scale(const RelativeState& s, double alpha_rad, double dt_s) {
   // Ratio of the sensed drag to the on-board model's drag at the navigated height and speed:
   // the product of the density, drag-coefficient and mass errors (and wind), low-pass filtered.
@@ -282,7 +337,12 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     double c = 0.0;
     if (range_to_aim_m > kTerminalMinRange_m && tr.range_m > 0.0 && tr.sensitivity < 0.0) {
       const double c_max = kTerminalDragScale * ref.drag;
-      c = clamp((range_to_aim_m - tr.range_m) / tr.sensitivity, -c_max, c_max);
+      // The final reversal is still to come: its alpha modulation lowers the drag for a
+      // reversal time and so lengthens the range by about V int (C_D(alpha) / C_D(alpha_mod) - 1) dt.
+      const double extra_m = final_reversal_done_ || !modulation_allowed(ref.drag, ref.drag_max)
+                                 ? 0.0
+                                 : reversal_range_extension_m(s, out.alpha_rad, std::fabs(ref.sigma));
+      c = clamp((range_to_aim_m - tr.range_m - extra_m) / tr.sensitivity, -c_max, c_max);
     }
     const double d0 = ref.drag, d0p = ref.drag_prime;
     // The increment never takes the reference past the plan's path-constraint bound (scaled
@@ -401,8 +461,20 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   }
   if (last_sign_ != 0 && sign_ref != last_sign_) {
     reversal_until_t_s_ = s.t_s + 2.0 * sigma_d / sigma_rate_max_radps_ + dt_s;
+    reversal_start_t_s_ = s.t_s;
+    reversal_sigma0_rad_ = sigma_d;
   }
   last_sign_ = sign_ref;
+  if (modulation_allowed(ref.drag, ref.drag_max) && s.t_s < reversal_until_t_s_ && reversal_start_t_s_ >= 0.0) {
+    // Angle-of-attack modulation in a reversal: rolling through wings level at the maximum
+    // rate raises the vertical lift from L cos(sigma0) to L; lowering alpha so that
+    // C_L(alpha + d_alpha) = C_L(alpha) cos(sigma0) / cos(sigma(t)) keeps the vertical lift,
+    // so the reversal no longer leaves a climb that the drag loop cannot remove before TAEM.
+    // sigma(t) is the rate-limited roll, led by the filter lag.
+    const double t_rel = s.t_s - reversal_start_t_s_ + kAlphaModulationLead_s;
+    out.alpha_rad = modulated_alpha(out.alpha_rad, models_.mach(s.altitude_m, V),
+                                    reversal_lift_ratio(reversal_sigma0_rad_, t_rel));
+  }
 
   // (3.22) with w = 1: the bank sign comes from the plan or the heading corridor; the heading
   // loop's bank sigma_chi (3.21) is computed and reported for telemetry only.

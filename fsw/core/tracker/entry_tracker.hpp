@@ -13,6 +13,10 @@
 //                        reversal timed so that the heading at TAEM is the target heading;
 //   reversal             sign changes are flown open loop at the maximum bank rate (the rate
 //                        filter after the tracker limits the rate), drag integrator frozen;
+//                        alpha is lowered meanwhile so that C_L cos(sigma(t)) stays C_L cos(sigma0)
+//                        (the roll through wings level would otherwise leave a climb that the
+//                        drag loop cannot remove before TAEM), and the range control allows for
+//                        the drag this costs in the final reversal;
 //   terminal range       over the last 25 % of the energy span the drag reference gets a
 //                        range-to-go increment linear in energy that vanishes at TAEM, and the
 //                        final drag is scaled by the sensed drag-to-model ratio, so that the
@@ -102,6 +106,10 @@ class EntryTracker {
     double along_track_m = 0.0; // range to go along the arrival line (< 0: aim point passed)
   };
   LateralTarget lateral_target(const RelativeState& s) const;
+  bool modulation_allowed(double drag_ref, double drag_max) const;
+  double modulated_alpha(double alpha_rad, double mach, double lift_ratio) const;
+  double reversal_lift_ratio(double sigma0_rad, double t_rel_s) const;
+  double reversal_range_extension_m(const RelativeState& s, double alpha_rad, double sigma0_rad) const;
   void update_drag_scale(const RelativeState& s, double alpha_rad, double dt_s);
 
   OnboardModels models_;
@@ -131,6 +139,8 @@ class EntryTracker {
   bool final_reversal_done_ = false;
   int last_sign_ = 0;
   double reversal_until_t_s_ = -1.0;
+  double reversal_start_t_s_ = -1.0;  // start of the last reversal
+  double reversal_sigma0_rad_ = 0.0;  // bank magnitude at its start
 };
 
 }  // namespace reentry::fsw
