@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "planner/mission_geometry.hpp"
 #include "reentry/config/mission.hpp"
 
 namespace reentry::fsw {
@@ -49,24 +50,6 @@ constexpr double kMaxDragScale = 2.0;
 constexpr double kEarthFlattening = 1.0 / 298.257223563;  // WGS-84
 
 double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
-
-// Initial great-circle bearing from point 0 to point 1, clockwise from North.
-double great_circle_bearing(double lat0, double lon0, double lat1, double lon1) {
-  return std::atan2(std::sin(lon1 - lon0) * std::cos(lat1),
-                    std::cos(lat0) * std::sin(lat1) - std::sin(lat0) * std::cos(lat1) * std::cos(lon1 - lon0));
-}
-
-double great_circle_range_m(double lat0, double lon0, double lat1, double lon1) {
-  const double cos_arc = std::sin(lat0) * std::sin(lat1) + std::cos(lat0) * std::cos(lat1) * std::cos(lon1 - lon0);
-  return kEarthRadius_m * std::acos(clamp(cos_arc, -1.0, 1.0));
-}
-
-double wrap_pi(double a) {
-  a = std::fmod(a, 2.0 * M_PI);
-  if (a <= -M_PI) a += 2.0 * M_PI;
-  if (a > M_PI) a -= 2.0 * M_PI;
-  return a;
-}
 
 bool finite_state(const RelativeState& s) {
   const double v[] = {s.t_s, s.radius_m, s.altitude_m, s.latitude_rad, s.velocity_mps, s.flight_path_rad,
@@ -192,10 +175,11 @@ EntryTracker::LateralTarget EntryTracker::lateral_target(const RelativeState& s)
   // so the vehicle converges on the line and arrives along it, on chi_f (the heading is
   // targeted explicitly instead of following from the last reversal).
   LateralTarget t;
-  t.range_m = great_circle_range_m(s.latitude_rad, s.longitude_rad, aim_lat_rad_, aim_lon_rad_);
-  t.bearing_rad = great_circle_bearing(s.latitude_rad, s.longitude_rad, aim_lat_rad_, aim_lon_rad_);
+  const GreatCircle to_aim = great_circle(s.latitude_rad, s.longitude_rad, aim_lat_rad_, aim_lon_rad_);  // (7.1)-(7.2)
+  t.range_m = kEarthRadius_m * to_aim.arc_rad;
+  t.bearing_rad = to_aim.azimuth_rad;
   if (t.range_m > kAimMinRange_m) {
-    const double back = great_circle_bearing(aim_lat_rad_, aim_lon_rad_, s.latitude_rad, s.longitude_rad);
+    const double back = great_circle(aim_lat_rad_, aim_lon_rad_, s.latitude_rad, s.longitude_rad).azimuth_rad;
     t.offset_rad = wrap_pi(back - (taem_heading_rad_ + M_PI));
   }
   const double cross_track_m = t.range_m * std::sin(t.offset_rad);
