@@ -22,20 +22,36 @@ namespace detail {
 inline bool valid_root_inputs(double a, double b, double x_tol, int max_iter) {
   return std::isfinite(a) && std::isfinite(b) && x_tol > 0.0 && std::isfinite(x_tol) && max_iter >= 1;
 }
+
+// Common start of the bracketing methods: checks the inputs, evaluates f at both ends and
+// decides the cases that need no iteration (invalid input, non-finite value, a root at an
+// end point, no sign change). Returns true with `early` set when the caller is done.
+template <class F>
+bool bracket_check(F& f, double a, double b, double x_tol, int max_iter, double& fa, double& fb, RootResult& early) {
+  if (!valid_root_inputs(a, b, x_tol, max_iter)) {
+    early = {a, 0.0, 0, NumStatus::kInvalidInput};
+    return true;
+  }
+  fa = f(a);
+  fb = f(b);
+  if (!std::isfinite(fa)) early = {a, fa, 0, NumStatus::kNonFinite};
+  else if (!std::isfinite(fb)) early = {b, fb, 0, NumStatus::kNonFinite};
+  else if (fa == 0.0) early = {a, fa, 0, NumStatus::kOk};
+  else if (fb == 0.0) early = {b, fb, 0, NumStatus::kOk};
+  else if ((fa > 0.0) == (fb > 0.0))
+    early = {(std::fabs(fa) < std::fabs(fb)) ? a : b, std::fmin(std::fabs(fa), std::fabs(fb)), 0, NumStatus::kNoBracket};
+  else return false;
+  return true;
+}
 }  // namespace detail
 
 // Brent's method (inverse quadratic interpolation / secant / bisection) on a bracket [a, b].
 // Converged when the bracket half-width is below 0.5 * x_tol + 2 eps |x| or f(x) == 0.
 template <class F>
 RootResult brent(F&& f, double a, double b, double x_tol, int max_iter) {
-  if (!detail::valid_root_inputs(a, b, x_tol, max_iter)) return {a, 0.0, 0, NumStatus::kInvalidInput};
-  double fa = f(a);
-  double fb = f(b);
-  if (!std::isfinite(fa)) return {a, fa, 0, NumStatus::kNonFinite};
-  if (!std::isfinite(fb)) return {b, fb, 0, NumStatus::kNonFinite};
-  if (fa == 0.0) return {a, fa, 0, NumStatus::kOk};
-  if (fb == 0.0) return {b, fb, 0, NumStatus::kOk};
-  if ((fa > 0.0) == (fb > 0.0)) return {(std::fabs(fa) < std::fabs(fb)) ? a : b, std::fmin(std::fabs(fa), std::fabs(fb)), 0, NumStatus::kNoBracket};
+  double fa = 0.0, fb = 0.0;
+  RootResult early{};
+  if (detail::bracket_check(f, a, b, x_tol, max_iter, fa, fb, early)) return early;
   constexpr double kEps = std::numeric_limits<double>::epsilon();
   double c = a;
   double fc = fa;
@@ -102,14 +118,9 @@ RootResult brent(F&& f, double a, double b, double x_tol, int max_iter) {
 // Converged when |x_k - x_{k-1}| <= x_tol, the bracket is narrower than x_tol, or f(x_k) == 0.
 template <class F>
 RootResult bracketed_secant(F&& f, double a, double b, double x_tol, int max_iter) {
-  if (!detail::valid_root_inputs(a, b, x_tol, max_iter)) return {a, 0.0, 0, NumStatus::kInvalidInput};
-  double fa = f(a);
-  double fb = f(b);
-  if (!std::isfinite(fa)) return {a, fa, 0, NumStatus::kNonFinite};
-  if (!std::isfinite(fb)) return {b, fb, 0, NumStatus::kNonFinite};
-  if (fa == 0.0) return {a, fa, 0, NumStatus::kOk};
-  if (fb == 0.0) return {b, fb, 0, NumStatus::kOk};
-  if ((fa > 0.0) == (fb > 0.0)) return {(std::fabs(fa) < std::fabs(fb)) ? a : b, std::fmin(std::fabs(fa), std::fabs(fb)), 0, NumStatus::kNoBracket};
+  double fa = 0.0, fb = 0.0;
+  RootResult early{};
+  if (detail::bracket_check(f, a, b, x_tol, max_iter, fa, fb, early)) return early;
   double x_prev = (std::fabs(fa) < std::fabs(fb)) ? a : b;
   double f_prev = (std::fabs(fa) < std::fabs(fb)) ? fa : fb;
   int side = 0;  // +1: b was retained last time, -1: a was retained last time
