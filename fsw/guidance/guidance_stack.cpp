@@ -26,7 +26,7 @@ std::string GuidanceStack::create(const config::Mission& mission, exec::PlanMode
   // A planned alpha profile is planned here, at start-up, on a copy of the mission.
   const config::Mission* source = &mission;
   config::Mission planned;
-  if (mission.alpha_profile_planned && mission.alpha_profile.x.empty()) {
+  if (mission.alpha_profile_planned) {
     planned = mission;
     const std::string err = resolve_alpha_profile(planned);
     if (!err.empty()) return err;

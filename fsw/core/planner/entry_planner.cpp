@@ -18,8 +18,7 @@ constexpr double kMaxClosedFraction = 0.1;  // below this initial drag the energ
 constexpr double kDensityStep_m = 25.0;    // finite-difference step for d ln rho / dr
 constexpr int kRootIterations = 80;
 constexpr double kConstraintMargin = 0.97;  // planned fraction of each path-constraint limit (3 % design margin)
-constexpr int kTaemBoxSamples = 60;
-constexpr double kCorridorTurnLength_m = 50000.0;  // path length of the corridor's turn to the LOS        // altitude samples of the TAEM band (start-up only)
+constexpr int kTaemBoxSamples = 60;        // altitude samples of the TAEM band (start-up only)
 
 bool finite_state(const RelativeState& s) {
   return std::isfinite(s.radius_m) && std::isfinite(s.latitude_rad) && std::isfinite(s.longitude_rad) &&

@@ -61,8 +61,6 @@ class EntryPlanner {
   double entry_energy_Jpkg() const { return entry_energy_; }
   double taem_energy_Jpkg() const { return taem_energy_; }
   /// RelativeState at the mission entry interface, drag from the on-board models.
-  /// Altitude of the planned final drag (the TAEM band rule, see the .cpp).
-  double taem_drag_altitude_m() const { return taem_drag_altitude_m_; }
   RelativeState entry_state() const;
   /// Active maximum-drag and minimum-drag (Lmin) corridor of the last plan, on the grid.
   double corridor_max(int k) const { return d_max_[k]; }

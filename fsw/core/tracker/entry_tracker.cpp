@@ -302,6 +302,9 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   const double g = gravity_mps2(r);
   const double slat = std::sin(s.latitude_rad), clat = std::cos(s.latitude_rad);
   const bool terminal = e_norm < terminal_e_norm_;
+  const bool lateral_corridor = e_norm < lateral_e_norm_;
+  // Aim-point geometry, once per cycle, for the terminal range control and the corridor.
+  const LateralTarget target = (terminal || lateral_corridor) ? lateral_target(s) : LateralTarget{};
   if (terminal) {
     // Terminal range control (drag reference update, as the Shuttle's): the range the plan
     // still flies from here, S = -int dE / D_ref (C.2), is matched to the great-circle
@@ -317,7 +320,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     const double k_f = 1.0 + (drag_scale_ - 1.0) * (1.0 - w_here);
     const TerminalRange tr = terminal_range(s.energy_Jpkg, ref.drag, e_t);
     // Range to go along the arrival line: negative once the aim point has been passed.
-    const double range_to_aim_m = lateral_target(s).along_track_m;
+    const double range_to_aim_m = target.along_track_m;
     double c = 0.0;
     if (range_to_aim_m > kTerminalMinRange_m && tr.range_m > 0.0 && tr.sensitivity < 0.0) {
       const double c_max = kTerminalDragScale * ref.drag;
@@ -408,13 +411,12 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   // lateral logic aimed along the arrival line). A sign change is flown as a reversal, open
   // loop at the maximum bank rate, t_rev = 2 |sigma| / sigma_rate_max long.
   int sign_ref = ref.sigma >= 0.0 ? 1 : -1;
-  const bool lateral_corridor = e_norm < lateral_e_norm_;
+  const double t_rev_s = 2.0 * sigma_d / sigma_rate_max_radps_;
   if (lateral_corridor && last_sign_ != 0) {
-    const double err_to_target = wrap_pi(chi - lateral_target(s).heading_rad);
+    const double err_to_target = wrap_pi(chi - target.heading_rad);
     const double e_taem_norm = taem_energy_Jpkg_ / entry_energy_Jpkg_;
     const double x = clamp((e_norm - e_taem_norm) / (lateral_e_norm_ - e_taem_norm), 0.0, 1.0);
     const double corridor = kCorridorMin_rad + (kCorridorMax_rad - kCorridorMin_rad) * x;
-    const double t_rev_s = 2.0 * sigma_d / sigma_rate_max_radps_;
     const double t_go_s = (s.energy_Jpkg - taem_energy_Jpkg_) / std::fmax(D * V, 1e-6);  // E' = -D V
     sign_ref = last_sign_;
     if (t_go_s < kFinalReversalWindow * t_rev_s) {
@@ -444,7 +446,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     out.heading_err_rad = err_to_target;
   }
   if (last_sign_ != 0 && sign_ref != last_sign_) {
-    reversal_until_t_s_ = s.t_s + 2.0 * sigma_d / sigma_rate_max_radps_ + dt_s;
+    reversal_until_t_s_ = s.t_s + t_rev_s + dt_s;
     reversal_start_t_s_ = s.t_s;
     reversal_sigma0_rad_ = sigma_d;
   }

@@ -79,8 +79,6 @@ class EntryTracker {
 
   const TrackerGains& gains() const { return gains_; }
   const ReferenceProfile& profile() const { return profile_; }
-  /// Filtered ratio of the sensed drag to the on-board model's (density x C_D / mass error).
-  double drag_scale() const { return drag_scale_; }
   /// Start of the terminal phase (range control in the tracker).
   double terminal_energy_Jpkg() const { return terminal_e_norm_ * entry_energy_Jpkg_; }
 
