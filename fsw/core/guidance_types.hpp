@@ -47,7 +47,12 @@ struct RelativeState {
   double energy_Jpkg = 0.0;           // E = V^2/2 - mu/r + mu/R (7.8)
   double drag_mps2 = 0.0;             // sensed (IMU) drag acceleration
   double lift_mps2 = 0.0;             // sensed lift acceleration magnitude
+  double lift_over_drag_scale = 1.0;  // sensed L/D over the on-board model's, filtered (1: model)
 };
+
+/// Planned fraction of every path-constraint limit (3 % design margin): the planner's
+/// corridor bounds and the tracker's sensed-constraint drag limiter use the same fraction.
+inline constexpr double kConstraintMargin = 0.97;
 
 /// Lateral corridor phase: over the last kLateralCorridorSpanFraction of the entry-to-TAEM
 /// energy span the tracker keeps the vehicle on the arrival great circle with a heading

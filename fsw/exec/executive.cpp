@@ -88,6 +88,7 @@ void Executive::request_plan(std::int64_t tick, const RelativeState& s) {
   PlanRequest& req = request_buffer_;
   req.id = next_request_id_++;
   req.from = predict_state(s, cfg_.plan_latency_ticks, dt_s());
+  req.from.lift_over_drag_scale = lift_over_drag_scale_;
   request_tick_ = tick;
   due_tick_ = tick + cfg_.plan_latency_ticks;
   request_wall_ns_ = now_ns();
@@ -237,6 +238,9 @@ CycleOutput Executive::step(const NavInput& nav) {
   }
   out.drag_err_mps2 = law.drag_err_mps2;
   out.heading_err_rad = law.heading_err_rad;
+  if (law_status == Status::kOk && std::isfinite(law.lift_over_drag_scale) && law.lift_over_drag_scale > 0.0) {
+    lift_over_drag_scale_ = law.lift_over_drag_scale;
+  }
   out.plan_seq = has_profile_ ? active_.seq : 0;
 
   // 5. Plan scheduling: entry (end of the initial descent), period, after the reversal,

@@ -49,6 +49,7 @@ struct LawOutput {
   double drag_ref_mps2 = 0.0;
   double drag_err_mps2 = 0.0;
   double heading_err_rad = 0.0;
+  double lift_over_drag_scale = 1.0;  // in-flight L/D estimate over the model's, for the planner
 };
 
 class CommandLaw {
@@ -185,6 +186,7 @@ class Executive {
   bool first_plan_requested_ = false;
   bool capture_plan_requested_ = false;
   bool replan_after_reversal_ = false;
+  double lift_over_drag_scale_ = 1.0;  // latest in-flight L/D estimate of the law (planner input)
   Phase last_phase_ = Phase::kInitialDescent;
 
   ReferenceProfile active_;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 #include "filter/rate_filter.hpp"
 #include "models/onboard_models.hpp"
@@ -196,7 +197,7 @@ TEST(Tracker, AdversarialInputsInTrackingNeverGiveANaNCommand) {
   s.radius_m = profile.radius_m[k];
   s.altitude_m = profile.radius_m[k] - kEarthRadius_m;
   s.velocity_mps = profile.velocity_mps[k];
-  s.flight_path_rad = profile.gamma_rad[k];
+  s.flight_path_rad = 0.0;  // level: the pull-out is complete, so the drag is captured
   s.heading_rad = profile.heading_rad[k];
   s.energy_Jpkg = profile.energy_Jpkg[k];
   s.drag_mps2 = profile.drag_mps2[k];
@@ -258,6 +259,132 @@ TEST(Tracker, InitialDescentHoldsProfileAlphaWingsLevelAndNeverEmitsNaN) {
   EXPECT_EQ(t.step(s, 0.1, out), Status::kNonFinite);
   s.velocity_mps = V;
   EXPECT_EQ(t.step(s, 0.0, out), Status::kInvalidInput);
+}
+
+TEST(Tracker, WingsLevelPullOutDragMatchesNumericalIntegration) {
+  // Independent truth: RK4 integration of h'' = (L/D) D0 exp(-(h - h0) / H) - g_eff from a
+  // sink rate to the bottom of the pull-out (h' = 0), the drag read there.
+  const double H = 7000.0, lod = 0.9, g_eff = 0.9, d0 = 0.5;
+  for (double h_dot0 : {-50.0, -150.0, -250.0}) {
+    double h = 0.0, v = h_dot0;
+    const double dt = 1e-3;
+    auto acc = [&](double hh) { return lod * d0 * std::exp(-hh / H) - g_eff; };
+    for (int i = 0; i < 10000000 && v < 0.0; ++i) {
+      const double k1h = v, k1v = acc(h);
+      const double k2h = v + 0.5 * dt * k1v, k2v = acc(h + 0.5 * dt * k1h);
+      const double k3h = v + 0.5 * dt * k2v, k3v = acc(h + 0.5 * dt * k2h);
+      const double k4h = v + dt * k3v, k4v = acc(h + dt * k3h);
+      h += dt / 6.0 * (k1h + 2.0 * k2h + 2.0 * k3h + k4h);
+      v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+    }
+    const double d_bottom = d0 * std::exp(-h / H);
+    EXPECT_NEAR(wings_level_pullout_drag_mps2(d0, lod, h_dot0, g_eff, H), d_bottom, 1e-4 * d_bottom) << h_dot0;
+  }
+  // Climbing: already pulled out. No lift: no pull-out.
+  EXPECT_DOUBLE_EQ(wings_level_pullout_drag_mps2(d0, lod, 10.0, g_eff, H), d0);
+  EXPECT_EQ(wings_level_pullout_drag_mps2(d0, 0.0, -100.0, g_eff, H), kNoPullOut_mps2);
+}
+
+namespace {
+// A tracker flying mid-profile (captured, level) and the state it was given.
+struct MidProfile {
+  config::Mission mission;
+  EntryTracker tracker;
+  RelativeState state;
+  const ReferenceProfile* profile = nullptr;
+};
+std::unique_ptr<MidProfile> mid_profile_tracker(double profile_fraction) {
+  auto m = std::make_unique<MidProfile>();
+  const auto loaded = config::load_mission("x33");
+  if (!loaded.ok) return nullptr;
+  m->mission = loaded.mission;
+  EntryPlanner planner;
+  static ReferenceProfile profile;
+  if (planner.init(m->mission) != Status::kOk || planner.plan(planner.entry_state(), profile) != Status::kOk) {
+    return nullptr;
+  }
+  if (m->tracker.init(m->mission) != Status::kOk) return nullptr;
+  m->tracker.set_profile(profile);
+  m->profile = &profile;
+  const int k = static_cast<int>(profile_fraction * (profile.n_points - 1));
+  RelativeState& s = m->state;
+  s.radius_m = profile.radius_m[k];
+  s.altitude_m = profile.radius_m[k] - kEarthRadius_m;
+  s.velocity_mps = profile.velocity_mps[k];
+  s.heading_rad = profile.heading_rad[k];
+  s.energy_Jpkg = profile.energy_Jpkg[k];
+  s.drag_mps2 = profile.drag_mps2[k];
+  s.lift_mps2 = profile.drag_mps2[k] * profile.lift_over_drag[k];
+  return m;
+}
+}  // namespace
+
+TEST(Tracker, DragReferenceNeverExceedsTheSensedConstraintBound) {
+  // The q*alpha limit lowered to half the q*alpha of the reference state: on the reference,
+  // q = D / (C_D S/m) with the table C_D gives a drag bound D * 0.97 (q alpha)_max / (q alpha),
+  // half the planned drag; the tracker's reference must not exceed it.
+  auto m = mid_profile_tracker(0.5);
+  ASSERT_NE(m, nullptr);
+  TrackerOutput out;
+  ASSERT_EQ(m->tracker.step(m->state, 0.1, out), Status::kOk);
+  ASSERT_EQ(out.phase, Phase::kTracking);
+  const double d_planned = out.drag_ref_mps2;
+  OnboardModels models;
+  ASSERT_EQ(models.init(m->mission), Status::kOk);
+  const double cd = models.drag_coefficient(out.alpha_rad, m->state.energy_Jpkg, m->state.altitude_m);
+  const double q_alpha = m->state.drag_mps2 / (cd * models.area_over_mass()) * out.alpha_rad;
+  config::Mission tight = m->mission;
+  tight.constraints.q_alpha_max_Pa_rad = 0.5 * q_alpha;
+  ASSERT_EQ(m->tracker.init(tight), Status::kOk);
+  m->tracker.set_profile(*m->profile);
+  ASSERT_EQ(m->tracker.step(m->state, 0.1, out), Status::kOk);
+  ASSERT_EQ(out.phase, Phase::kTracking);
+  EXPECT_NEAR(out.drag_ref_mps2, 0.97 * 0.5 * m->state.drag_mps2, 1e-9 * m->state.drag_mps2);
+  EXPECT_LT(out.drag_ref_mps2, 0.6 * d_planned);
+}
+
+TEST(Tracker, LiftOverDragEstimateConvergesToTheSensedRatio) {
+  // Sensed lift 12 % below the table's at the flown alpha: the filtered estimate (20 s time
+  // constant) must settle at 0.88 after a few time constants.
+  auto m = mid_profile_tracker(0.5);
+  ASSERT_NE(m, nullptr);
+  TrackerOutput out;
+  ASSERT_EQ(m->tracker.step(m->state, 0.1, out), Status::kOk);
+  OnboardModels models;
+  ASSERT_EQ(models.init(m->mission), Status::kOk);
+  RelativeState s = m->state;
+  for (int i = 0; i < 2000; ++i) {
+    double cl, cd;
+    models.aero().coefficients(out.alpha_rad, models.mach(s.altitude_m, s.velocity_mps), cl, cd);
+    s.lift_mps2 = 0.88 * s.drag_mps2 * cl / cd;
+    s.t_s += 0.1;
+    ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
+  }
+  EXPECT_NEAR(out.lift_over_drag_scale, 0.88, 0.002);
+}
+
+TEST(EntryPlanner, InFlightLiftOverDragEstimateScalesThePlannedLiftOverDrag) {
+  // The planned L/D is the table's times the estimate, point by point, and the equilibrium
+  // glide floor (7.7) rises accordingly: a plan with 0.85 of the lift is still feasible.
+  const auto loaded = config::load_mission("x33");
+  ASSERT_TRUE(loaded.ok) << loaded.error;
+  EntryPlanner planner;
+  ASSERT_EQ(planner.init(loaded.mission), Status::kOk);
+  static ReferenceProfile nominal, scaled;
+  RelativeState from = planner.entry_state();
+  ASSERT_EQ(planner.plan(from, nominal), Status::kOk);
+  from.lift_over_drag_scale = 0.85;
+  ASSERT_EQ(planner.plan(from, scaled), Status::kOk);
+  OnboardModels models;
+  ASSERT_EQ(models.init(loaded.mission), Status::kOk);
+  for (int k = 0; k < scaled.n_points; k += 10) {
+    const double h = scaled.radius_m[k] - kEarthRadius_m;
+    double cl, cd;
+    models.aero().coefficients(scaled.alpha_rad[k], models.mach(h, scaled.velocity_mps[k]), cl, cd);
+    EXPECT_NEAR(scaled.lift_over_drag[k], 0.85 * cl / cd, 1e-9 * cl / cd) << k;
+  }
+  from.lift_over_drag_scale = 0.0;  // outside the accepted range
+  EXPECT_EQ(planner.plan(from, scaled), Status::kInvalidInput);
 }
 
 }  // namespace

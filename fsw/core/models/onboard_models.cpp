@@ -149,10 +149,10 @@ double OnboardAero::interpolate(const double* table, double alpha_rad, double ma
 }
 
 void OnboardAero::coefficients(double alpha_rad, double mach, double& cl, double& cd) const {
-  cl = interpolate(cl_, alpha_rad, mach);
+  cl = lift_scale_ * interpolate(cl_, alpha_rad, mach);
   cd = interpolate(cd_, alpha_rad, mach);
 }
-double OnboardAero::cl(double alpha_rad, double mach) const { return interpolate(cl_, alpha_rad, mach); }
+double OnboardAero::cl(double alpha_rad, double mach) const { return lift_scale_ * interpolate(cl_, alpha_rad, mach); }
 double OnboardAero::cd(double alpha_rad, double mach) const { return interpolate(cd_, alpha_rad, mach); }
 
 // ---------------------------------------------------------------- alpha profile

@@ -74,6 +74,9 @@ class OnboardAero {
   Status init(const double* alpha_rad, int n_alpha, const double* mach, int n_mach,
               const double* cl, const double* cd);
   void coefficients(double alpha_rad, double mach, double& cl, double& cd) const;
+  /// Scale on C_L (the in-flight L/D estimate over the table's; 1 = table).
+  void set_lift_scale(double scale) { lift_scale_ = scale; }
+  double lift_scale() const { return lift_scale_; }
   double cl(double alpha_rad, double mach) const;
   double cd(double alpha_rad, double mach) const;
 
@@ -85,6 +88,7 @@ class OnboardAero {
   double mach_[kMaxMach] = {};
   double cl_[kMaxAlpha * kMaxMach] = {};
   double cd_[kMaxAlpha * kMaxMach] = {};
+  double lift_scale_ = 1.0;
 };
 
 /// alpha over normalised energy E / E_entry, linear, clamped (mission.alpha_profile).

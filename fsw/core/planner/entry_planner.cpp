@@ -17,8 +17,10 @@ constexpr double kGradedGridDrag_mps2 = 0.1;
 constexpr double kMaxClosedFraction = 0.1;  // below this initial drag the energy grid is graded
 constexpr double kDensityStep_m = 25.0;    // finite-difference step for d ln rho / dr
 constexpr int kRootIterations = 80;
-constexpr double kConstraintMargin = 0.97;  // planned fraction of each path-constraint limit (3 % design margin)
-constexpr int kTaemBoxSamples = 60;        // altitude samples of the TAEM band (start-up only)
+constexpr int kTaemBoxSamples = 60;
+constexpr double kBestEffortCrossrangeFraction = 0.05;  // of the range to go (see reversal_search)
+constexpr double kMinLiftScale = 0.5;  // accepted range of the in-flight L/D estimate
+constexpr double kMaxLiftScale = 1.5;        // altitude samples of the TAEM band (start-up only)
 
 bool finite_state(const RelativeState& s) {
   return std::isfinite(s.radius_m) && std::isfinite(s.latitude_rad) && std::isfinite(s.longitude_rad) &&
@@ -460,6 +462,7 @@ Status EntryPlanner::integrate(double s_rev, bool store, Rop& final_state) {
 }
 
 Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, double& downrange_rad) {
+  diag_.reversal_best_effort = false;
   build_range_table();
   if (!(s_total_ > 0.0) || !std::isfinite(s_total_)) return Status::kNonFinite;
   Rop end{};
@@ -496,6 +499,30 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
     diag_.initial_bank_sign = sign0_;
   }
   diag_.reversal_evaluations += evaluations;
+  if (root.status == Status::kNoBracket) {
+    // No single reversal nulls the crossrange (typically just after a flown reversal, when
+    // the remaining turn is short). Best effort: the smallest crossrange of no reversal and
+    // the interval ends; accepted when it is a small fraction of the range to go, which the
+    // lateral corridor phase steers out, since a stale plan would be worse.
+    double best_s = 2.0 * s_total_, best_abs = std::fabs(base.crossrange_rad);
+    const double ends[2] = {1e-9 * s_total_, s_total_ * (1.0 - 1e-9)};
+    for (double s_end : ends) {
+      const double c = crossrange(s_end);
+      if (std::isfinite(c) && std::fabs(c) < best_abs) {
+        best_abs = std::fabs(c);
+        best_s = s_end;
+      }
+    }
+    if (!(best_abs < kBestEffortCrossrangeFraction * diag_.b_mission_rad)) return root.status;
+    s_rev = best_s;
+    s = integrate(s_rev, false, end);
+    if (s != Status::kOk) return s;
+    const TrackErrors te = track_errors(from_.latitude_rad, from_.longitude_rad, a_mission_, end.lat, end.lon);
+    crossrange_rad = te.crossrange_rad;
+    downrange_rad = te.downrange_rad;
+    diag_.reversal_best_effort = true;
+    return Status::kOk;
+  }
   if (root.status != Status::kOk) return root.status;
   s_rev = root.x;
   s = integrate(s_rev, false, end);
@@ -526,6 +553,11 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   };
 
   if (!finite_state(from_)) return fail(Status::kNonFinite);
+  // In-flight L/D estimate (1 before the drag is measurable): the corridor floor (7.7), the
+  // equilibrium-glide radius and the bank extraction then use the vehicle's sensed L/D.
+  const double lod_scale = from_.lift_over_drag_scale;
+  if (!(lod_scale >= kMinLiftScale && lod_scale <= kMaxLiftScale)) return fail(Status::kInvalidInput);
+  models_.aero().set_lift_scale(lod_scale);
   if (!(from_.energy_Jpkg > taem_energy_ * 1.001) || !(from_.radius_m > kEarthRadius_m)) return fail(Status::kInvalidInput);
 
   // Mission geometry (7.1), (7.2) from the planning position to the TAEM point.
@@ -582,7 +614,7 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
     diag_.crossrange_err_m = cross * r_mean_;
     diag_.downrange_err_m = range_desired - range_flown;
     if (std::fabs(range_desired - range_flown) < downrange_tol_m_) {
-      converged = std::fabs(diag_.crossrange_err_m) < crossrange_tol_m_;
+      converged = diag_.reversal_best_effort || std::fabs(diag_.crossrange_err_m) < crossrange_tol_m_;
       break;
     }
     s_m += range_desired - range_flown;  // (7.22)

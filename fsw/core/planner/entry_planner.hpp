@@ -42,6 +42,7 @@ struct PlannerDiagnostics {
   int corridor_closed_points = 0;  // grid points where max drag <= Lmin
   int clipped_points = 0;          // drag points set to the active max constraint
   int bank_saturated_points = 0;   // |D'' - a| / b exceeded L/D
+  bool reversal_best_effort = false;  // no reversal nulls the crossrange: smallest one planned
 };
 
 class EntryPlanner {

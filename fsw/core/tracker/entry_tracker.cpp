@@ -47,6 +47,9 @@ constexpr double kDegree_rad = M_PI / 180.0;
 constexpr double kDragScaleTimeConstant_s = 20.0;
 constexpr double kMinDragScale = 0.5;
 constexpr double kMaxDragScale = 2.0;
+constexpr double kPullOutComplete = 1.05;  // pull-out counted as complete when D would rise < 5 % more
+constexpr double kMinLodScale = 0.5;   // bounds of the L/D estimate (model / 2 .. model x 1.5)
+constexpr double kMaxLodScale = 1.5;
 constexpr double kEarthFlattening = 1.0 / 298.257223563;  // WGS-84
 
 double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
@@ -106,12 +109,18 @@ Status EntryTracker::init(const config::Mission& mission) {
   initial_descent_drag_mps2_ = mission.guidance.initial_descent_drag_mps2;
   sigma_rate_max_radps_ = mission.constraints.sigma_rate_max_radps;
   alpha_max_rad_ = mission.constraints.alpha_max_rad;
+  heat_flux_max_Wpm2_ = mission.constraints.heat_flux_max_Wpm2;
+  q_alpha_max_Pa_rad_ = mission.constraints.q_alpha_max_Pa_rad;
+  q_max_Pa_ = mission.constraints.dynamic_pressure_max_Pa;
+  load_factor_max_mps2_ = mission.constraints.load_factor_max_g * kG0_mps2;
   if (!(sigma_rate_max_radps_ > 0.0) || !(gains_.omega0_radps > 0.0)) return Status::kInvalidInput;
   has_profile_ = false;
   captured_ = false;
   drag_integral_ = 0.0;
   heading_integral_ = 0.0;
   drag_scale_ = 1.0;
+  lod_scale_ = 1.0;
+  last_alpha_cmd_rad_ = 0.0;
   final_reversal_done_ = false;
   last_sign_ = 0;
   reversal_until_t_s_ = -1.0;
@@ -273,6 +282,75 @@ void EntryTracker::update_drag_scale(const RelativeState& s, double alpha_rad, d
   drag_scale_ += clamp(dt_s / kDragScaleTimeConstant_s, 0.0, 1.0) * (ratio - drag_scale_);
 }
 
+double wings_level_pullout_drag_mps2(double drag_mps2, double lift_over_drag, double h_dot_mps, double g_eff_mps2,
+                                     double scale_height_m) {
+  // Vertical energy balance of a wings-level pull-out, speed held, rho ~ exp(-h / H):
+  //   h_dot^2 / 2 = (L/D) H (D_p - D) - g_eff H ln(D_p / D),  g_eff = g - V_h^2 / r,
+  // solved for D_p by fixed-point iteration (bounded; the map contracts while L/D D_p > g_eff).
+  const double D = drag_mps2;
+  if (!(h_dot_mps < 0.0) || !(D > 0.0)) return D;
+  if (!(lift_over_drag > 0.0) || !(scale_height_m > 0.0)) return kNoPullOut_mps2;
+  double d_p = D;
+  for (int i = 0; i < 50; ++i) {
+    const double next =
+        D + (0.5 * h_dot_mps * h_dot_mps + g_eff_mps2 * scale_height_m * std::log(d_p / D)) / (lift_over_drag * scale_height_m);
+    if (!(next > 0.0) || !std::isfinite(next) || next > kNoPullOut_mps2) return kNoPullOut_mps2;
+    if (std::fabs(next - d_p) < 1e-6 * d_p) return next;
+    d_p = next;
+  }
+  return d_p;
+}
+
+double EntryTracker::lift_up_pullout_drag_mps2(const RelativeState& s) const {
+  // Drag at the bottom of a wings-level pull-out from the present state, in the local scale
+  // height of the on-board atmosphere, with the sensed L/D.
+  const double D = s.drag_mps2;
+  if (!(D > kMinDrag_mps2)) return D;
+  const double dlnrho_dr = models_.dlnrho_dr_fd(s.altitude_m, 100.0);
+  if (!(dlnrho_dr < 0.0)) return D;
+  const double v_h = s.velocity_mps * std::cos(s.flight_path_rad);
+  const double g_eff = gravity_mps2(s.radius_m) - v_h * v_h / s.radius_m;
+  return wings_level_pullout_drag_mps2(D, s.lift_mps2 / D, s.velocity_mps * std::sin(s.flight_path_rad), g_eff,
+                                       -1.0 / dlnrho_dr);
+}
+
+double EntryTracker::constraint_drag_limit_mps2(const RelativeState& s, double alpha_rad, double cd) const {
+  // Largest drag at which the sensed path-constraint values stay within the planned fraction
+  // of their limits. Every constraint depends on the sensed drag through D / (C_D S/m): q, q
+  // alpha and the load factor linearly, the heat flux (3.5) through sqrt(rho) = sqrt(2 q) / V,
+  // so each gives its limit by scaling the present drag. A density error does not move the
+  // limit; a C_D error moves it as it moves q itself.
+  const double D = s.drag_mps2;
+  if (!(D > kMinDrag_mps2) || !(cd > 0.0)) return 1e300;
+  const double q = D / (cd * models_.area_over_mass());
+  double limit = 1e300;
+  auto scale_linear = [&](double value, double max) {
+    if (max > 0.0 && value > 0.0) limit = std::fmin(limit, D * kConstraintMargin * max / value);
+  };
+  scale_linear(q, q_max_Pa_);
+  scale_linear(q * alpha_rad, q_alpha_max_Pa_rad_);
+  scale_linear(std::hypot(D, s.lift_mps2), load_factor_max_mps2_);
+  const double heat = models_.heat_flux_Wpm2(2.0 * q / (s.velocity_mps * s.velocity_mps), s.velocity_mps);
+  if (heat_flux_max_Wpm2_ > 0.0 && heat > 0.0) {
+    const double ratio = kConstraintMargin * heat_flux_max_Wpm2_ / heat;
+    limit = std::fmin(limit, D * ratio * ratio);
+  }
+  return limit;
+}
+
+void EntryTracker::update_lod_scale(const RelativeState& s, double alpha_rad, double dt_s) {
+  // Sensed L/D over the model's at the commanded alpha and the navigated Mach, low-pass
+  // filtered like the drag ratio; only where both accelerations are measurable. The planner
+  // scales its lift with it, so that replans see the vehicle's true manoeuvrability (the
+  // equilibrium-glide floor (7.7) and the bank extraction depend on L/D alone).
+  if (!(s.drag_mps2 >= initial_descent_drag_mps2_) || !(s.lift_mps2 > 0.0)) return;
+  double cl, cd;
+  models_.aero().coefficients(alpha_rad, models_.mach(s.altitude_m, s.velocity_mps), cl, cd);
+  if (!(cl > 0.0) || !(cd > 0.0)) return;
+  const double ratio = clamp((s.lift_mps2 / s.drag_mps2) / (cl / cd), kMinLodScale, kMaxLodScale);
+  lod_scale_ += clamp(dt_s / kDragScaleTimeConstant_s, 0.0, 1.0) * (ratio - lod_scale_);
+}
+
 Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& out) {
   if (!initialised_) return Status::kInvalidInput;
   if (!finite_state(s) || !std::isfinite(dt_s)) return Status::kNonFinite;
@@ -287,11 +365,21 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   const double e_norm = s.energy_Jpkg / entry_energy_Jpkg_;
   out = TrackerOutput{};
   out.alpha_rad = clamp(alpha_profile_.alpha_rad(e_norm), 0.0, alpha_max_rad_);
-  if (!captured_ && s.drag_mps2 >= initial_descent_drag_mps2_) captured_ = true;
+  // The L/D estimate uses the alpha commanded last cycle (flown now, up to the rate filter).
+  update_lod_scale(s, last_alpha_cmd_rad_ > 0.0 ? last_alpha_cmd_rad_ : out.alpha_rad, dt_s);
+  out.lift_over_drag_scale = lod_scale_;
+  if (!captured_ && has_profile_ && s.drag_mps2 >= initial_descent_drag_mps2_) {
+    // Capture once the drag is measurable and a wings-level pull-out would level off below
+    // the reference (lift down is needed to reach it) or is essentially complete. Before
+    // that, the reference can only be reached by the pull-out itself: lift down would deepen
+    // a dive the drag loop cannot arrest (the heat-flux overshoot of a steep entry).
+    const double d_ref = reference_at(s.energy_Jpkg).drag;
+    captured_ = lift_up_pullout_drag_mps2(s) < std::fmax(d_ref, kPullOutComplete * s.drag_mps2);
+  }
   if (!has_profile_ || !captured_) {
-    // Initial descent: profile alpha, wings level (maximum vertical lift) until the drag is
-    // large enough for the drag dynamics to be controllable (DESIGN §6).
+    // Initial descent: profile alpha, wings level (maximum vertical lift) until captured.
     out.phase = Phase::kInitialDescent;
+    last_alpha_cmd_rad_ = out.alpha_rad;
     return Status::kOk;
   }
 
@@ -334,12 +422,17 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     const double d0 = ref.drag, d0p = ref.drag_prime;
     // The increment never takes the reference past the plan's path-constraint bound (scaled
     // with the sensed drag ratio like the final drag, since the bound is on q, heat flux, ...).
-    const double d_bound = ref.drag_max > 0.0 ? ref.drag_max * drag_scale_ : 1e300;
+    const double d_bound = ref.drag_max > 0.0 ? ref.drag_max * std::fmin(drag_scale_, 1.0) : 1e300;
     if (d0 * k_f + c * w_here > d_bound && w_here > 0.0) c = (d_bound - d0 * k_f) / w_here;
     ref.drag = d0 * k_f + c * w_here;
     ref.drag_prime = d0p * k_f + (c - (drag_scale_ - 1.0) * d0) * dw_dE;
     ref.drag_second = ref.drag_second * k_f - 2.0 * (drag_scale_ - 1.0) * d0p * dw_dE;
   }
+  // Constraint protection: the reference never asks for more drag than the sensed state
+  // allows within the planned constraint fraction (the planner's bound is on the model
+  // atmosphere; tracking lag and reversal transients must not eat the margin).
+  const double cd_here = models_.drag_coefficient(out.alpha_rad, s.energy_Jpkg, s.altitude_m);
+  ref.drag = std::fmin(ref.drag, constraint_drag_limit_mps2(s, out.alpha_rad, cd_here));
   const double sg = std::sin(s.flight_path_rad), cg = std::cos(s.flight_path_rad);
   const double V2 = V * V;
   // Sensed L/D where it is measurable, else the planned one (a lift-less or drag-less
@@ -472,6 +565,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   out.drag_ref_mps2 = ref.drag;
   out.drag_err_mps2 = err;
   if (!lateral_corridor) out.heading_err_rad = heading_err;
+  last_alpha_cmd_rad_ = out.alpha_rad;
   return Status::kOk;
 }
 

@@ -56,7 +56,15 @@ struct TrackerOutput {
   double sigma_chi_rad = 0.0;      // heading-loop bank (3.21)
   double u_drag = 0.0;             // commanded vertical L/D
   bool saturated = false;          // |u| exceeded the available L/D
+  double lift_over_drag_scale = 1.0;  // sensed L/D over the model's at the commanded alpha, filtered
 };
+
+/// Drag at the bottom of a wings-level pull-out from drag D sinking at h_dot < 0, speed held
+/// and the air exponential with scale height H (vertical energy balance, see the .cpp);
+/// D itself when not sinking, kNoPullOut_mps2 when the lift cannot arrest the sink.
+inline constexpr double kNoPullOut_mps2 = 1e6;
+double wings_level_pullout_drag_mps2(double drag_mps2, double lift_over_drag, double h_dot_mps, double g_eff_mps2,
+                                     double scale_height_m);
 
 /// The documented gain rule (no per-vehicle tuning):
 ///  - omega0 = 2 sqrt(g0 / H), twice the natural frequency sqrt(g/H) of the altitude mode of a
@@ -109,6 +117,9 @@ class EntryTracker {
   double reversal_lift_ratio(double sigma0_rad, double t_rel_s) const;
   double reversal_range_extension_m(const RelativeState& s, double alpha_rad, double sigma0_rad) const;
   void update_drag_scale(const RelativeState& s, double alpha_rad, double dt_s);
+  void update_lod_scale(const RelativeState& s, double alpha_rad, double dt_s);
+  double lift_up_pullout_drag_mps2(const RelativeState& s) const;
+  double constraint_drag_limit_mps2(const RelativeState& s, double alpha_rad, double cd) const;
 
   OnboardModels models_;
   AlphaProfile alpha_profile_;
@@ -118,6 +129,10 @@ class EntryTracker {
   double initial_descent_drag_mps2_ = 0.0;
   double sigma_rate_max_radps_ = 0.0;
   double alpha_max_rad_ = 0.0;
+  double heat_flux_max_Wpm2_ = 0.0;  // path-constraint limits (0: none)
+  double q_alpha_max_Pa_rad_ = 0.0;
+  double q_max_Pa_ = 0.0;
+  double load_factor_max_mps2_ = 0.0;
   double q_ref_Pa_ = 1.0;
   double terminal_e_norm_ = 0.0;    // terminal phase below this normalised energy
   double aim_lat_rad_ = 0.0;        // TAEM aim point
@@ -134,6 +149,8 @@ class EntryTracker {
   double drag_integral_ = 0.0;      // int (D - D_ref) dt
   double heading_integral_ = 0.0;   // int (chi_ref - chi) dE
   double drag_scale_ = 1.0;         // sensed drag / model drag, filtered
+  double lod_scale_ = 1.0;          // sensed L/D / model L/D, filtered
+  double last_alpha_cmd_rad_ = 0.0; // alpha commanded in the previous cycle
   bool final_reversal_done_ = false;
   int last_sign_ = 0;
   double reversal_until_t_s_ = -1.0;
