@@ -24,8 +24,8 @@ flight_path_deg = -7.0        # -7 +- 5 deg
 flight_path_tol_deg = 5.0
 heading_tol_deg = 30.0        # heading towards HAC +- 30 deg
 hac_radius_m = 4650.0         # not given for HORUS: X-33 value (9.3 km diameter) adopted""",
-   alpha=[(0.0, 20.0), (0.10, 25.0), (0.30, 43.0), (1.0, 43.0)],
-   alpha_note="OUR profile: 43 deg (alpha_max - 0.9) above E/E_entry = 0.3, then down to 20 deg at TAEM (the thesis fig 3.7 end value). The thesis reference (~40 deg, then ~20 deg) left the heat-flux-limited drag corridor too narrow for the 6506 km range (planner: corridor closed, SIL miss 1351 km); a higher alpha lowers heat flux and range (thesis 6.2). At TAEM 20 deg is needed: at the TAEM energy, q*alpha <= 191 kPa deg and Mach >= 2.2 hold together only below about 22 deg (25 deg ended at Mach 2.15)."),
+   alpha=[(0.0, 20.0), (0.10, 25.0), (0.20, 43.9), (1.0, 43.9)],
+   alpha_note="OUR profile: alpha_max (43.9 deg) above E/E_entry = 0.2, then down to 20 deg at TAEM (the thesis fig 3.7 end value). The thesis reference (~40 deg, then ~20 deg) left the heat-flux-limited drag corridor too narrow for the 6506 km range (planner: corridor closed, SIL miss 1351 km); a higher alpha lowers heat flux and range (thesis 6.2). At TAEM 20 deg is needed: at the TAEM energy, q*alpha <= 191 kPa deg and Mach >= 2.2 hold together only below about 22 deg (25 deg ended at Mach 2.15). The mission is range-long: with the heat-flux pull-out flown wings level (no dive), 43 deg above 0.3 ended 120 km past the aim point; the most drag per unit heat flux and q*alpha (alpha_max, held to 0.2) is needed."),
  "x33": dict(src="table 3.3 (Shen 2002, Saraf et al. 2003)", vehicle="x33", h=120.1, lon=225.5, lat=-23.75, v=7627, g=-1.249, chi=49.59,
    th=29.4, tv=918.8, tlon=279.5, tlat=28.7, comment_lat="28.7 N (Kennedy)",
    qdot=("%.4f" % (75 * BTU), "75 BTU/(ft^2 s)"), n=3.0, qa=("%.4f" % (7000 * PSF * D), "7000 psf deg = 335,161.8 Pa deg -> Pa rad"), q=("%.5f" % (300 * PSF), "300 psf"), amax=50, adot=5, sdot=5,
