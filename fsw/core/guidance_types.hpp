@@ -60,6 +60,11 @@ inline constexpr double kConstraintMargin = 0.97;
 /// that circle there too, so that planned and flown path lengths agree.
 inline constexpr double kLateralCorridorSpanFraction = 0.30;
 
+/// Terminal phase: over the last kTerminalSpanFraction of the energy span the tracker
+/// controls the range to go with a drag increment and no replans are made (DESIGN §6); the
+/// planner's ranging alpha (which replans apply) ends there.
+inline constexpr double kTerminalSpanFraction = 0.25;
+
 /// A planned reference over energy, produced by the planner, consumed by the tracker.
 /// Points are ordered by decreasing energy (index 0 = planning state, last = TAEM).
 struct ReferenceProfile {
@@ -90,6 +95,7 @@ struct ReferenceProfile {
   double e1_Jpkg = 0.0;
   double e2_Jpkg = 0.0;
   double trajectory_length_m = 0.0;
+  double ranging_blend = 0.0;          // alpha moved this fraction towards alpha(L/D max) (ranging)
   double crossrange_err_m = 0.0;
   double downrange_err_m = 0.0;
   int iterations = 0;

@@ -387,5 +387,54 @@ TEST(EntryPlanner, InFlightLiftOverDragEstimateScalesThePlannedLiftOverDrag) {
   EXPECT_EQ(planner.plan(from, scaled), Status::kInvalidInput);
 }
 
+TEST(EntryPlanner, RangingAlphaRestoresALowLiftOverDragPlan) {
+  // With 65 % of the table L/D the X-33 range is beyond the wings-level glide at the profile
+  // alpha (46 deg, L/D 0.72): the planner must move alpha towards alpha(L/D max), found here
+  // by an independent brute-force scan of the table, never below it and never at TAEM, and
+  // the plan must converge. The nominal vehicle needs no ranging.
+  const auto loaded = config::load_mission("x33");
+  ASSERT_TRUE(loaded.ok) << loaded.error;
+  auto planner = std::make_unique<EntryPlanner>();
+  ASSERT_EQ(planner->init(loaded.mission), Status::kOk);
+  static ReferenceProfile nominal, low;
+  RelativeState from = planner->entry_state();
+  ASSERT_EQ(planner->plan(from, nominal), Status::kOk);
+  EXPECT_EQ(nominal.ranging_blend, 0.0);
+  AlphaProfile profile_alpha;
+  ASSERT_EQ(profile_alpha.init(loaded.mission.alpha_profile), Status::kOk);
+  for (int k = 0; k < nominal.n_points; ++k) {
+    EXPECT_DOUBLE_EQ(nominal.alpha_rad[k], profile_alpha.alpha_rad(nominal.e_norm[k])) << k;
+  }
+  from.lift_over_drag_scale = 0.65;
+  ASSERT_EQ(planner->plan(from, low), Status::kOk);
+  EXPECT_TRUE(low.converged);
+  EXPECT_GT(low.ranging_blend, 0.0);
+  OnboardModels models;
+  ASSERT_EQ(models.init(loaded.mission), Status::kOk);
+  int lowered = 0;
+  for (int k = 0; k < low.n_points; ++k) {
+    const double a_profile = profile_alpha.alpha_rad(low.e_norm[k]);
+    EXPECT_LE(low.alpha_rad[k], a_profile + 1e-12) << k;
+    const double mach = models.mach(low.radius_m[k] - kEarthRadius_m, low.velocity_mps[k]);
+    double best = -1.0, a_ld = 0.0;
+    for (int i = 0; i <= 4000; ++i) {
+      const double a = loaded.mission.constraints.alpha_max_rad * i / 4000.0;
+      double cl, cd;
+      models.aero().coefficients(a, mach, cl, cd);
+      if (cl / cd > best) { best = cl / cd; a_ld = a; }
+    }
+    // Not below alpha(L/D max) (at the planned Mach; the planner scans at its glide Mach).
+    EXPECT_GE(low.alpha_rad[k], std::fmin(a_ld, a_profile) - 2.0 * kDeg) << k;
+    if (low.alpha_rad[k] < a_profile - 1.0 * kDeg) ++lowered;
+  }
+  EXPECT_GT(lowered, low.n_points / 4);
+  EXPECT_DOUBLE_EQ(low.alpha_rad[low.n_points - 1], profile_alpha.alpha_rad(low.e_norm[low.n_points - 1]));
+  // A later plan never lowers the blend again (continuous alpha reference in flight).
+  static ReferenceProfile later;
+  from.lift_over_drag_scale = 1.0;
+  ASSERT_EQ(planner->plan(from, later), Status::kOk);
+  EXPECT_GE(later.ranging_blend, low.ranging_blend);
+}
+
 }  // namespace
 }  // namespace reentry::fsw

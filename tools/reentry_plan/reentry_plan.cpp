@@ -126,6 +126,7 @@ int main(int argc, char** argv) {
   j["downrange_err_km"] = d.downrange_err_m / 1e3;
   j["clipped_points"] = d.clipped_points;
   j["bank_saturated_points"] = d.bank_saturated_points;
+  j["ranging_blend"] = d.ranging_blend;
   j["reversal_evaluations"] = d.reversal_evaluations;
   j["plan_ms"] = std::chrono::duration<double, std::milli>(t1 - t0).count();
   if (!profile_out.empty()) {

@@ -13,14 +13,19 @@ namespace {
 
 constexpr double kMaxAltitude_m = 200000.0;
 constexpr double kDragFloor_mps2 = 1e-4;
-constexpr double kGradedGridDrag_mps2 = 0.1;
-constexpr double kMaxClosedFraction = 0.1;  // below this initial drag the energy grid is graded
-constexpr double kDensityStep_m = 25.0;    // finite-difference step for d ln rho / dr
+constexpr double kGradedGridDrag_mps2 = 0.1;   // below this initial drag the energy grid is graded
+constexpr double kMaxClosedFraction = 0.1;     // of the grid: a longer corridor closure is a failure
+constexpr double kDensityStep_m = 25.0;        // finite-difference step for d ln rho / dr
 constexpr int kRootIterations = 80;
-constexpr int kTaemBoxSamples = 60;
+constexpr int kTaemBoxSamples = 60;            // altitude samples of the TAEM band (start-up only)
 constexpr double kBestEffortCrossrangeFraction = 0.05;  // of the range to go (see reversal_search)
-constexpr double kMinLiftScale = 0.5;  // accepted range of the in-flight L/D estimate
-constexpr double kMaxLiftScale = 1.5;        // altitude samples of the TAEM band (start-up only)
+constexpr double kCaptureSpanFraction = 0.1;   // profile start (capture) exempt from the floor check
+constexpr double kRangingRampFraction = 0.05;  // alpha blend ramps over this fraction of the span
+constexpr int kRangingBisections = 6;          // blend resolution 1/64
+constexpr double kRangingBlendTol = 1.0 / 64.0;
+constexpr int kAlphaScanSteps = 200;           // alpha(L/D max) scan over [0, alpha_max]
+constexpr double kMinLiftScale = 0.5;          // accepted range of the in-flight L/D estimate
+constexpr double kMaxLiftScale = 1.5;
 
 bool finite_state(const RelativeState& s) {
   return std::isfinite(s.radius_m) && std::isfinite(s.latitude_rad) && std::isfinite(s.longitude_rad) &&
@@ -59,6 +64,7 @@ Status EntryPlanner::init(const config::Mission& mission) {
   // transients at drag capture and the on-board/true aerodynamics differences (trim) must fit.
   heat_max_ = kConstraintMargin * c.heat_flux_max_Wpm2;
   q_alpha_max_ = kConstraintMargin * c.q_alpha_max_Pa_rad;
+  alpha_max_ = c.alpha_max_rad;
   n_max_ = kConstraintMargin * c.load_factor_max_g * kG0_mps2;
   q_max_ = kConstraintMargin * c.dynamic_pressure_max_Pa;
   sigma_rate_max_ = c.sigma_rate_max_radps;
@@ -90,6 +96,7 @@ Status EntryPlanner::init(const config::Mission& mission) {
   if (!(entry_energy_ > taem_energy_) || !(taem_energy_ > 0.0) || !std::isfinite(entry_.drag_mps2)) {
     return Status::kInvalidInput;
   }
+  ranging_blend_min_ = 0.0;
   initialised_ = true;
   return Status::kOk;
 }
@@ -136,6 +143,7 @@ Status EntryPlanner::build_grid(double e0, bool graded) {
     const double u = static_cast<double>(k) / (kGrid - 1);
     e_[k] = e0 - span * (graded ? u * u : u);
     alpha_[k] = alpha_profile_.alpha_rad(e_[k] / entry_energy_);
+    alpha_base_[k] = alpha_[k];
   }
   e_[kGrid - 1] = taem_energy_;
   return Status::kOk;
@@ -533,6 +541,125 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
   return Status::kOk;
 }
 
+// ------------------------------------------------------------------ corridor + length iteration
+Status EntryPlanner::prepare_corridor(double d_actual) {
+  Status s = equilibrium_glide_radius();
+  if (s != Status::kOk) return s;
+  corridor();
+  // Closed corridor: the active maximum drag below Lmin. Lmin is a manoeuvrability limit,
+  // not a structural one (§7.1), so short closures are flown on the maximum constraint;
+  // a corridor closed over more than kMaxClosedFraction of the grid is a failure.
+  int closed = 0;
+  for (int k = 0; k < kGrid; ++k) {
+    if (!std::isfinite(d_min_[k]) || !(d_max_[k] > 0.0)) return Status::kCorridorClosed;
+    if (d_max_[k] <= d_min_[k]) ++closed;
+  }
+  diag_.corridor_closed_points = closed;
+  if (closed > kMaxClosedFraction * kGrid) return Status::kCorridorClosed;
+  breakpoints();
+  diag_.di_mps2 = initial_drag_ == InitialDrag::kActual ? d_actual : d_min_[0];
+  if (diag_.di_mps2 < kDragFloor_mps2) diag_.di_mps2 = kDragFloor_mps2;
+  diag_.df_mps2 = models_.drag_mps2(alpha_[kGrid - 1], taem_drag_altitude_m_,
+                                    velocity_from_energy_mps(taem_energy_, kEarthRadius_m + taem_drag_altitude_m_));
+  return Status::kOk;
+}
+
+Status EntryPlanner::length_iteration(double range_desired, double& s_m, double& s_rev, bool& converged) {
+  // Trajectory-length iteration (7.22): fit, extract, reversal search, correct the length.
+  double cross = 0.0, down = 0.0;
+  converged = false;
+  for (int it = 0; it < max_iterations_; ++it) {
+    diag_.iterations = it + 1;
+    Status s = fit_profile(s_m);
+    if (s != Status::kOk) return s;
+    s = extract();
+    if (s != Status::kOk) return s;
+    s = reversal_search(s_rev, cross, down);
+    if (s != Status::kOk) return s;
+    const double range_flown = down * r_mean_;  // R_i
+    diag_.s_final_m = s_m;
+    diag_.crossrange_err_m = cross * r_mean_;
+    diag_.downrange_err_m = range_desired - range_flown;
+    if (std::fabs(range_desired - range_flown) < downrange_tol_m_) {
+      converged = diag_.reversal_best_effort || std::fabs(diag_.crossrange_err_m) < crossrange_tol_m_;
+      break;
+    }
+    s_m += range_desired - range_flown;  // (7.22)
+    if (!(s_m > 0.0)) return Status::kNotConverged;
+  }
+  return Status::kOk;
+}
+
+bool EntryPlanner::below_glide_floor() const {
+  // The drag the range needs is below the wings-level equilibrium glide somewhere between
+  // the end of the capture part of the profile (where it first reaches the floor, or after
+  // kCaptureSpanFraction of the span) and the terminal phase (where the tracker's range
+  // control takes over). Floor: L = g - V^2/r - 2 omega V cos(lat) sin(chi) ((2.45) with
+  // gamma' = 0 and sigma = 0; the Earth-rate term is a sixth of the need for the eastbound
+  // X-33 at Mach 20, so the rotation-free Lmin (7.7) would call its nominal plan infeasible),
+  // lat and chi on the planning-point -> TAEM great circle at the planned range fraction.
+  const double span = e0_ - taem_energy_;
+  const double e_terminal = taem_energy_ + kTerminalSpanFraction * (entry_energy_ - taem_energy_);
+  const double slat0 = std::sin(from_.latitude_rad), clat0 = std::cos(from_.latitude_rad);
+  const double slat1 = std::sin(taem_lat_), clat1 = std::cos(taem_lat_);
+  const double p0[3] = {clat0 * std::cos(from_.longitude_rad), clat0 * std::sin(from_.longitude_rad), slat0};
+  const double p1[3] = {clat1 * std::cos(taem_lon_), clat1 * std::sin(taem_lon_), slat1};
+  const double arc = diag_.b_mission_rad;
+  const double s_end = s_cum_[kGrid - 1];
+  bool entered = false;
+  for (int k = 0; k < kGrid && e_[k] > e_terminal; ++k) {
+    // Point at fraction f of the great circle (spherical interpolation) and its azimuth.
+    const double f = s_end > 0.0 ? clamp(s_cum_[k] / s_end, 0.0, 1.0) : 0.0;
+    double lat = from_.latitude_rad, chi = a_mission_;
+    if (arc > 1e-6) {
+      const double w0 = std::sin((1.0 - f) * arc) / std::sin(arc), w1 = std::sin(f * arc) / std::sin(arc);
+      const double x = w0 * p0[0] + w1 * p1[0], y = w0 * p0[1] + w1 * p1[1], z = w0 * p0[2] + w1 * p1[2];
+      lat = std::atan2(z, std::hypot(x, y));
+      if (f < 1.0 - 1e-9) chi = great_circle(lat, std::atan2(y, x), taem_lat_, taem_lon_).azimuth_rad;
+    }
+    const double v = v_[k], r = r_[k];
+    const double need = gravity_mps2(r) - v * v / r - 2.0 * kEarthRate_radps * v * std::cos(lat) * std::sin(chi);
+    const double floor = need / lod_[k];
+    if (!entered) entered = d_[k] >= floor || e_[k] < e0_ - kCaptureSpanFraction * span;
+    if (entered && d_[k] < floor) return true;
+  }
+  return false;
+}
+
+void EntryPlanner::alpha_ld_max_on_grid() {
+  // alpha of maximum C_L / C_D at the Mach of the grid's equilibrium-glide state, by a
+  // bounded scan over [0, alpha_max].
+  for (int k = 0; k < kGrid; ++k) {
+    const double h = r_[k] - kEarthRadius_m;
+    const double mach = models_.mach(h, velocity_from_energy_mps(e_[k], r_[k]));
+    double best_alpha = alpha_base_[k], best_lod = -1.0;
+    for (int i = 0; i <= kAlphaScanSteps; ++i) {
+      const double a = alpha_max_ * i / kAlphaScanSteps;
+      double cl, cd;
+      models_.aero().coefficients(a, mach, cl, cd);
+      if (cd > 0.0 && cl / cd > best_lod) { best_lod = cl / cd; best_alpha = a; }
+    }
+    alpha_ld_[k] = best_alpha;
+  }
+}
+
+void EntryPlanner::set_ranging_blend(double blend) {
+  // alpha = alpha_profile + blend w(E) (alpha_LD - alpha_profile) where alpha_LD is lower.
+  // w ramps 0 -> 1 over kRangingRampFraction of the span below the planning energy (no alpha
+  // step at the first ranging plan; later plans keep w = 1 there, continuing the flown alpha)
+  // and back to 0 over the next-to-last such span before TAEM (0 over the last one), so the
+  // TAEM alpha (and with it the TAEM Mach and q alpha) stays the mission's.
+  const double span = entry_energy_ - taem_energy_;
+  const double ramp = kRangingRampFraction * span;
+  for (int k = 0; k < kGrid; ++k) {
+    const double w = (ranging_blend_min_ > 0.0 ? 1.0 : clamp((e0_ - e_[k]) / ramp, 0.0, 1.0)) *
+                     clamp((e_[k] - taem_energy_ - ramp) / ramp, 0.0, 1.0);
+    const double delta = alpha_ld_[k] - alpha_base_[k];
+    alpha_[k] = alpha_base_[k] + (delta < 0.0 ? blend * w * delta : 0.0);
+  }
+  diag_.ranging_blend = blend;
+}
+
 // ------------------------------------------------------------------ plan
 Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   diag_ = PlannerDiagnostics{};
@@ -579,47 +706,42 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
                               : models_.drag_mps2(alpha_from, from_.radius_m - kEarthRadius_m, from_.velocity_mps);
   Status s = build_grid(from_.energy_Jpkg, initial_drag_ == InitialDrag::kActual && d_actual < kGradedGridDrag_mps2);
   if (s != Status::kOk) return fail(s);
-  s = equilibrium_glide_radius();
+  s = prepare_corridor(d_actual);
   if (s != Status::kOk) return fail(s);
-  corridor();
-  // Closed corridor: the active maximum drag below Lmin. Lmin is a manoeuvrability limit,
-  // not a structural one (§7.1), so short closures are flown on the maximum constraint;
-  // a corridor closed over more than kMaxClosedFraction of the grid is a failure.
-  int closed = 0;
-  for (int k = 0; k < kGrid; ++k) {
-    if (!std::isfinite(d_min_[k]) || !(d_max_[k] > 0.0)) return fail(Status::kCorridorClosed);
-    if (d_max_[k] <= d_min_[k]) ++closed;
-  }
-  diag_.corridor_closed_points = closed;
-  if (closed > kMaxClosedFraction * kGrid) return fail(Status::kCorridorClosed);
-  breakpoints();
-  diag_.di_mps2 = initial_drag_ == InitialDrag::kActual ? d_actual : d_min_[0];
-  if (diag_.di_mps2 < kDragFloor_mps2) diag_.di_mps2 = kDragFloor_mps2;
-  diag_.df_mps2 = models_.drag_mps2(alpha_[kGrid - 1], taem_drag_altitude_m_,
-                                    velocity_from_energy_mps(taem_energy_, kEarthRadius_m + taem_drag_altitude_m_));
-
   double s_rev = 0.0;
-  double cross = 0.0, down = 0.0;
   bool converged = false;
-  for (int it = 0; it < max_iterations_; ++it) {
-    diag_.iterations = it + 1;
-    s = fit_profile(s_m);
-    if (s != Status::kOk) return fail(s);
-    s = extract();
-    if (s != Status::kOk) return fail(s);
-    s = reversal_search(s_rev, cross, down);
-    if (s != Status::kOk) return fail(s);
-    const double range_flown = down * r_mean_;  // R_i
-    diag_.s_final_m = s_m;
-    diag_.crossrange_err_m = cross * r_mean_;
-    diag_.downrange_err_m = range_desired - range_flown;
-    if (std::fabs(range_desired - range_flown) < downrange_tol_m_) {
-      converged = diag_.reversal_best_effort || std::fabs(diag_.crossrange_err_m) < crossrange_tol_m_;
-      break;
+  s = length_iteration(range_desired, s_m, s_rev, converged);
+  if (s == Status::kOk && (ranging_blend_min_ > 0.0 || below_glide_floor())) {
+    // Ranging alpha (thesis 6.3.1, ranging phase): the range needs less drag than the
+    // vehicle can hold even wings level at the profile alpha (low L/D, a long way to go).
+    // alpha moves towards alpha(L/D max) from the planning point to near TAEM; the smallest
+    // move that lifts the floor below the needed drag is found by bisection on the blend
+    // (the full move when even that is not enough: the longest range the vehicle can fly).
+    // Once used, the blend never decreases in later plans, so the alpha reference stays
+    // continuous from plan to plan. (Aiming the blend at a bank margin above the floor was
+    // measured worse: 500 dispersed X-33 runs 61.4 % with 10 deg, 67.8 % with none.)
+    alpha_ld_max_on_grid();
+    auto feasible = [&](double blend) {
+      set_ranging_blend(blend);
+      double s_trial = range_desired;
+      bool conv_trial = false;
+      if (prepare_corridor(d_actual) != Status::kOk) return false;
+      return length_iteration(range_desired, s_trial, s_rev, conv_trial) == Status::kOk && !below_glide_floor();
+    };
+    double lo = ranging_blend_min_, hi = 1.0;
+    if (ranging_blend_min_ > 0.0 && feasible(ranging_blend_min_)) hi = lo;
+    for (int i = 0; i < kRangingBisections && hi - lo > kRangingBlendTol; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      if (feasible(mid)) hi = mid;
+      else lo = mid;
     }
-    s_m += range_desired - range_flown;  // (7.22)
-    if (!(s_m > 0.0)) return fail(Status::kNotConverged);
+    set_ranging_blend(hi);
+    s_m = range_desired;
+    s = prepare_corridor(d_actual);
+    if (s != Status::kOk) return fail(s);
+    s = length_iteration(range_desired, s_m, s_rev, converged);
   }
+  if (s != Status::kOk) return fail(s);
   Rop end{};
   s = integrate(s_rev, true, end);
   if (s != Status::kOk) return fail(s);
@@ -627,6 +749,7 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   diag_.converged = converged;
   diag_.status = converged ? Status::kOk : Status::kNotConverged;
   fill_output(out);
+  if (converged) ranging_blend_min_ = diag_.ranging_blend;
   return diag_.status;
 }
 
@@ -679,6 +802,7 @@ void EntryPlanner::fill_output(ReferenceProfile& out) {
   out.e1_Jpkg = diag_.e1_Jpkg;
   out.e2_Jpkg = diag_.e2_Jpkg;
   out.trajectory_length_m = diag_.s_final_m;
+  out.ranging_blend = diag_.ranging_blend;
   out.crossrange_err_m = diag_.crossrange_err_m;
   out.downrange_err_m = diag_.downrange_err_m;
   out.iterations = diag_.iterations;

@@ -3,7 +3,11 @@
 //   2. drag profile fitting a trajectory length S (three segments (7.11)-(7.12) or smooth);
 //   3. extraction of r(E) (7.13), gamma(E) (7.14) and bank magnitude (7.17)-(7.20);
 //   4. bank reversal search on the reduced-order system (2.42)-(2.45), method 3 of §7.4;
-//   5. length update (7.22) until the downrange matches.
+//   5. length update (7.22) until the downrange matches;
+//   6. ranging alpha (ch. 6 ranging phase): when the range needs less drag than the
+//      wings-level glide floor (L/D too low for the distance), alpha is moved towards
+//      alpha(L/D max) by the smallest blend that restores feasibility, never decreasing in flight.
+// Replans take the in-flight L/D estimate (RelativeState::lift_over_drag_scale) as a C_L scale.
 // Fixed capacity, no heap after init(), bounded loops, every failure returned as a Status.
 #pragma once
 
@@ -42,6 +46,7 @@ struct PlannerDiagnostics {
   int corridor_closed_points = 0;  // grid points where max drag <= Lmin
   int clipped_points = 0;          // drag points set to the active max constraint
   int bank_saturated_points = 0;   // |D'' - a| / b exceeded L/D
+  double ranging_blend = 0.0;      // alpha moved this fraction towards alpha(L/D max) (ranging)
   bool reversal_best_effort = false;  // no reversal nulls the crossrange: smallest one planned
 };
 
@@ -72,6 +77,11 @@ class EntryPlanner {
   struct Rop { double lon, lat, chi; };   // reduced-order state (2.42)-(2.44)
 
   Status build_grid(double e0, bool graded);
+  Status prepare_corridor(double d_actual);
+  Status length_iteration(double range_desired, double& s_m, double& s_rev, bool& converged);
+  bool below_glide_floor() const;
+  void alpha_ld_max_on_grid();
+  void set_ranging_blend(double blend);
   Status equilibrium_glide_radius();
   void corridor();
   void breakpoints();
@@ -101,6 +111,8 @@ class EntryPlanner {
   double e_corridor_ = 0.0;            // below this energy the trajectory is a great circle
   double taem_radius_ = 0.0, taem_velocity_ = 0.0, taem_lat_ = 0.0, taem_lon_ = 0.0;
   double heat_max_ = 0.0, q_alpha_max_ = 0.0, n_max_ = 0.0, q_max_ = 0.0;
+  double alpha_max_ = 0.0;
+  double ranging_blend_min_ = 0.0;  // blend of the last converged plan (never decreases in flight)
   double sigma_rate_max_ = 0.0;
   int rk4_steps_ = 600;
   int max_iterations_ = 20;
@@ -121,6 +133,8 @@ class EntryPlanner {
   // grid arrays (index 0 = planning energy, kGrid-1 = TAEM)
   double e_[kGrid] = {};
   double alpha_[kGrid] = {};
+  double alpha_base_[kGrid] = {};   // the mission alpha profile on the grid
+  double alpha_ld_[kGrid] = {};     // alpha(L/D max) at the grid's equilibrium-glide Mach
   double r_[kGrid] = {};
   double v_[kGrid] = {};
   double d_min_[kGrid] = {};

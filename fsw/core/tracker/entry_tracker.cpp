@@ -16,7 +16,6 @@ constexpr double kMaxAccel_mps2 = 100.0 * 9.80665;
 // Phases by normalised energy span x = (E/E_entry - E_f/E_entry) / (1 - E_f/E_entry):
 //  - lateral heading corridor below x = kLateralCorridorSpanFraction (the planned reversal above),
 //  - terminal range control below x = kTerminalSpanFraction (no replans there, DESIGN §6).
-constexpr double kTerminalSpanFraction = 0.25;
 // Heading corridor half-width, linear in x from kCorridorMax_rad (corridor start) to
 // kCorridorMin_rad (TAEM). The minimum is kept above the heading swing of one reversal late
 // in the flight (a few degrees), so that the corridor does not reverse back and forth.
@@ -162,6 +161,7 @@ EntryTracker::RefPoint EntryTracker::reference_at(double energy) {
   r.b = lerp(p.b_coef);
   r.gamma = lerp(p.gamma_rad);
   r.alpha = lerp(p.alpha_rad);
+  r.alpha_prime = e0 != e1 ? (p.alpha_rad[k + 1] - p.alpha_rad[k]) / (e1 - e0) : 0.0;
   r.lod = lerp(p.lift_over_drag);
   r.sigma = lerp(p.sigma_rad);
   r.heading = p.heading_rad[k] + w * wrap_pi(p.heading_rad[k + 1] - p.heading_rad[k]);
@@ -446,9 +446,9 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   const double de = 1e-3 * entry_energy_Jpkg_;
   const double e_a = s.energy_Jpkg + de, e_b = s.energy_Jpkg - de;
   const double cd = models_.drag_coefficient(out.alpha_rad, s.energy_Jpkg, s.altitude_m);
-  const double cd_slope = models_.drag_coefficient_slope(
-      alpha_profile_.alpha_rad(e_a / entry_energy_Jpkg_), e_a, s.altitude_m,
-      alpha_profile_.alpha_rad(e_b / entry_energy_Jpkg_), e_b, s.altitude_m);
+  // alpha along the plan (which may differ from the mission profile: ranging alpha).
+  const double cd_slope = models_.drag_coefficient_slope(ref.alpha + ref.alpha_prime * de, e_a, s.altitude_m,
+                                                         ref.alpha - ref.alpha_prime * de, e_b, s.altitude_m);
   const double cd_ratio = cd > 0.0 ? cd_slope / cd : 0.0;
   const double density_term = -dlnrho_dr + 2.0 * g / V2;
   const double drag_prime = D * (2.0 / V2 + cd_ratio) + density_term * sg;   // (7.14)

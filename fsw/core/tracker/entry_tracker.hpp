@@ -95,7 +95,7 @@ class EntryTracker {
 
  private:
   struct RefPoint {
-    double drag = 0, drag_prime = 0, drag_second = 0, a = 0, b = 0, gamma = 0, alpha = 0;
+    double drag = 0, drag_prime = 0, drag_second = 0, a = 0, b = 0, gamma = 0, alpha = 0, alpha_prime = 0;
     double lod = 0, sigma = 0, heading = 0, heading_prime = 0, q = 0, velocity = 0, radius = 0, drag_max = 0;
   };
   RefPoint reference_at(double energy_Jpkg);
