@@ -46,6 +46,8 @@ constexpr double kDegree_rad = M_PI / 180.0;
 constexpr double kDragScaleTimeConstant_s = 20.0;
 constexpr double kMinDragScale = 0.5;
 constexpr double kMaxDragScale = 2.0;
+constexpr double kSkipCaptureDragFraction = 0.1;  // of the initial-descent drag (see capture)
+constexpr double kCaptureLookahead = 0.02;  // reference compared at E - 2 % of E_entry (pull-out energy)
 constexpr double kPullOutComplete = 1.05;  // pull-out counted as complete when D would rise < 5 % more
 constexpr double kMinLodScale = 0.5;   // bounds of the L/D estimate (model / 2 .. model x 1.5)
 constexpr double kMaxLodScale = 1.5;
@@ -254,7 +256,10 @@ double EntryTracker::reversal_lift_ratio(double sigma0_rad, double t_rel_s) cons
 }
 
 double EntryTracker::reversal_range_extension_m(const RelativeState& s, double alpha_rad, double sigma0_rad) const {
-  // Range added by one modulated reversal flown now: V int (C_D(alpha) / C_D(alpha_mod(t)) - 1) dt.
+  // Range added by one modulated reversal flown now. Over the reversal time T the vehicle
+  // covers V T whatever its drag, but dissipates only int D_mod V dt; the energy saved,
+  // int (D - D_mod) V dt, is dissipated afterwards at the drag D over a distance
+  //   dS = V int (1 - C_D(alpha_mod(t)) / C_D(alpha)) dt   (S = -int dE / D).
   if (!(sigma0_rad > 0.0)) return 0.0;
   const double mach = models_.mach(s.altitude_m, s.velocity_mps);
   const double cd_ref = models_.aero().cd(alpha_rad, mach);
@@ -264,7 +269,7 @@ double EntryTracker::reversal_range_extension_m(const RelativeState& s, double a
   for (int i = 0; i < kSamples; ++i) {
     const double t = (i + 0.5) * t_rev / kSamples;
     const double cd = models_.aero().cd(modulated_alpha(alpha_rad, mach, reversal_lift_ratio(sigma0_rad, t)), mach);
-    if (cd > 0.0) extension += (cd_ref / cd - 1.0) * s.velocity_mps * t_rev / kSamples;
+    if (cd_ref > 0.0) extension += (1.0 - cd / cd_ref) * s.velocity_mps * t_rev / kSamples;
   }
   return extension;
 }
@@ -308,8 +313,11 @@ double EntryTracker::lift_up_pullout_drag_mps2(const RelativeState& s) const {
   if (!(D > kMinDrag_mps2)) return D;
   const double dlnrho_dr = models_.dlnrho_dr_fd(s.altitude_m, 100.0);
   if (!(dlnrho_dr < 0.0)) return D;
+  // Net downward acceleration without lift, with the Earth-rate term of (2.45) (an eastbound
+  // vehicle near orbital speed is held up by it).
   const double v_h = s.velocity_mps * std::cos(s.flight_path_rad);
-  const double g_eff = gravity_mps2(s.radius_m) - v_h * v_h / s.radius_m;
+  const double g_eff = gravity_mps2(s.radius_m) - v_h * v_h / s.radius_m -
+                       2.0 * kEarthRate_radps * v_h * std::cos(s.latitude_rad) * std::sin(s.heading_rad);
   return wings_level_pullout_drag_mps2(D, s.lift_mps2 / D, s.velocity_mps * std::sin(s.flight_path_rad), g_eff,
                                        -1.0 / dlnrho_dr);
 }
@@ -368,13 +376,18 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   // The L/D estimate uses the alpha commanded last cycle (flown now, up to the rate filter).
   update_lod_scale(s, last_alpha_cmd_rad_ > 0.0 ? last_alpha_cmd_rad_ : out.alpha_rad, dt_s);
   out.lift_over_drag_scale = lod_scale_;
-  if (!captured_ && has_profile_ && s.drag_mps2 >= initial_descent_drag_mps2_) {
+  if (!captured_ && has_profile_ && s.drag_mps2 >= kSkipCaptureDragFraction * initial_descent_drag_mps2_) {
     // Capture once the drag is measurable and a wings-level pull-out would level off below
     // the reference (lift down is needed to reach it) or is essentially complete. Before
     // that, the reference can only be reached by the pull-out itself: lift down would deepen
-    // a dive the drag loop cannot arrest (the heat-flux overshoot of a steep entry).
-    const double d_ref = reference_at(s.energy_Jpkg).drag;
-    captured_ = lift_up_pullout_drag_mps2(s) < std::fmax(d_ref, kPullOutComplete * s.drag_mps2);
+    // a dive the drag loop cannot arrest (the heat-flux overshoot of a steep entry). A
+    // shallow entry whose pull-out would level off below the reference is captured from a
+    // tenth of the threshold drag on: its drag may never reach the threshold (skip-out).
+    const double d_ref = reference_at(s.energy_Jpkg - kCaptureLookahead * entry_energy_Jpkg_).drag;
+    reference_at(s.energy_Jpkg);  // restore the lookup hint
+    const double d_pullout = lift_up_pullout_drag_mps2(s);
+    captured_ = d_pullout < d_ref ||
+                (s.drag_mps2 >= initial_descent_drag_mps2_ && d_pullout < kPullOutComplete * s.drag_mps2);
   }
   if (!has_profile_ || !captured_) {
     // Initial descent: profile alpha, wings level (maximum vertical lift) until captured.
