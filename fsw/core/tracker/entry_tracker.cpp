@@ -29,8 +29,12 @@ constexpr double kAimMinRange_m = 1000.0;       // the offset angle is undefined
 constexpr double kFinalReversalWindow = 2.0;
 // Terminal range control: increment bounded to kTerminalDragScale of the reference drag,
 // frozen closer than kTerminalMinRange_m to the aim point.
-constexpr double kTerminalDragScale = 0.5;
+constexpr double kTerminalDragScale = 0.8;
 constexpr double kTerminalMinRange_m = 5000.0;
+// Weight of the terminal drag increment over u = (E - E_f) / (E_t - E_f): 1 at the phase start
+// with zero slope, 0 at TAEM (the final drag stays the plan's). Quadratic rather than linear,
+// so that late errors (the last corridor reversals) still meet some authority: w = 1 - (1 - u)^2.
+double terminal_weight(double u) { return 1.0 - (1.0 - u) * (1.0 - u); }
 // Scheduling of (3.13): full drag-loop bandwidth from kQrefFraction of the plan's largest q.
 constexpr double kQrefFraction = 0.3;
 // Alpha modulation in reversals: at most kAlphaModulationMax_rad below the profile, lift kept
@@ -203,12 +207,12 @@ EntryTracker::LateralTarget EntryTracker::lateral_target(const RelativeState& s)
 EntryTracker::TerminalRange EntryTracker::terminal_range(double energy, double drag_here, double e_t) const {
   // Trapezoidal quadrature from the current energy to the profile end of S = -int dE / D (C.2)
   // and dS/dc = -int w / D^2 dE, D = k_f(E) D_ref with the final-drag factor
-  // k_f = 1 + (K - 1)(1 - w) and w = (E - E_f) / (E_t - E_f).
+  // k_f = 1 + (K - 1)(1 - w) and w = terminal_weight((E - E_f) / (E_t - E_f)).
   const ReferenceProfile& p = profile_;
   TerminalRange t;
   const double span = e_t - taem_energy_Jpkg_;
   if (!(span > 0.0) || !(drag_here > 0.0)) return t;
-  auto weight = [&](double e) { return (e - taem_energy_Jpkg_) / span; };
+  auto weight = [&](double e) { return terminal_weight(clamp((e - taem_energy_Jpkg_) / span, 0.0, 1.0)); };
   auto scaled = [&](double e, double d) { return d * (1.0 + (drag_scale_ - 1.0) * (1.0 - weight(e))); };
   double e_prev = energy, inv_prev = 1.0 / scaled(energy, drag_here);
   double sens_prev = weight(energy) * inv_prev * inv_prev;
@@ -409,15 +413,17 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   if (terminal) {
     // Terminal range control (drag reference update, as the Shuttle's): the range the plan
     // still flies from here, S = -int dE / D_ref (C.2), is matched to the great-circle
-    // distance to the aim point by a drag increment linear in energy that vanishes at the
-    // TAEM energy, dD(E) = c w(E), w = (E - E_f) / (E_t - E_f): the final drag, which sets
+    // distance to the aim point by a drag increment that vanishes at the TAEM energy,
+    // dD(E) = c w(E), w = terminal_weight((E - E_f) / (E_t - E_f)): the final drag, which sets
     // the TAEM altitude, stays the plan's. c follows from the linearised range
     // dS/dc = -int w / D_ref^2 dE, re-evaluated every cycle, bounded to kTerminalDragScale D.
     // The final drag itself is multiplied by the sensed drag-to-model ratio K (blended in
     // over the phase), so the TAEM energy is met at the planned altitude in the true air.
     const double e_t = terminal_e_norm_ * entry_energy_Jpkg_;
-    const double w_here = clamp((s.energy_Jpkg - taem_energy_Jpkg_) / (e_t - taem_energy_Jpkg_), 0.0, 1.0);
-    const double dw_dE = 1.0 / (e_t - taem_energy_Jpkg_);
+    const double span = e_t - taem_energy_Jpkg_;
+    const double u = clamp((s.energy_Jpkg - taem_energy_Jpkg_) / span, 0.0, 1.0);
+    const double w_here = terminal_weight(u);
+    const double dw_dE = 2.0 * (1.0 - u) / span, d2w_dE2 = -2.0 / (span * span);
     const double k_f = 1.0 + (drag_scale_ - 1.0) * (1.0 - w_here);
     const TerminalRange tr = terminal_range(s.energy_Jpkg, ref.drag, e_t);
     // Range to go along the arrival line: negative once the aim point has been passed.
@@ -426,20 +432,21 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     if (range_to_aim_m > kTerminalMinRange_m && tr.range_m > 0.0 && tr.sensitivity < 0.0) {
       const double c_max = kTerminalDragScale * ref.drag;
       // The final reversal is still to come: its alpha modulation lowers the drag for a
-      // reversal time and so lengthens the range by about V int (C_D(alpha) / C_D(alpha_mod) - 1) dt.
+      // reversal time and so lengthens the range (reversal_range_extension_m).
       const double extra_m = final_reversal_done_ || !modulation_allowed(ref.drag, ref.drag_max)
                                  ? 0.0
                                  : reversal_range_extension_m(s, out.alpha_rad, std::fabs(ref.sigma));
       c = clamp((range_to_aim_m - tr.range_m - extra_m) / tr.sensitivity, -c_max, c_max);
     }
     const double d0 = ref.drag, d0p = ref.drag_prime;
-    // The increment never takes the reference past the plan's path-constraint bound (scaled
-    // with the sensed drag ratio like the final drag, since the bound is on q, heat flux, ...).
+    // The increment never takes the reference past the plan's path-constraint bound (times
+    // the sensed drag ratio K when below 1: a density error does not move a q-type bound).
     const double d_bound = ref.drag_max > 0.0 ? ref.drag_max * std::fmin(drag_scale_, 1.0) : 1e300;
     if (d0 * k_f + c * w_here > d_bound && w_here > 0.0) c = (d_bound - d0 * k_f) / w_here;
     ref.drag = d0 * k_f + c * w_here;
     ref.drag_prime = d0p * k_f + (c - (drag_scale_ - 1.0) * d0) * dw_dE;
-    ref.drag_second = ref.drag_second * k_f - 2.0 * (drag_scale_ - 1.0) * d0p * dw_dE;
+    ref.drag_second = ref.drag_second * k_f - 2.0 * (drag_scale_ - 1.0) * d0p * dw_dE +
+                      (c - (drag_scale_ - 1.0) * d0) * d2w_dE2;
   }
   // Constraint protection: the reference never asks for more drag than the sensed state
   // allows within the planned constraint fraction (the planner's bound is on the model

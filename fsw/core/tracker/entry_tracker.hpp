@@ -18,7 +18,7 @@
 //                        drag loop cannot remove before TAEM), and the range control allows for
 //                        the drag this costs in the final reversal;
 //   terminal range       over the last 25 % of the energy span the drag reference gets a
-//                        range-to-go increment linear in energy that vanishes at TAEM, and the
+//                        range-to-go increment (quadratic in energy) vanishing at TAEM, and the
 //                        final drag is scaled by the sensed drag-to-model ratio, so that the
 //                        aim point is reached at the TAEM altitude in the true atmosphere;
 //                        the increment stays within the plan's path-constraint bound.
