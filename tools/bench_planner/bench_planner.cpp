@@ -84,12 +84,14 @@ bool setup(Fixture& f, const std::string& name, const char* profile, const char*
   return true;
 }
 
-void run(benchmark::State& state, const std::string& name, const char* profile, const char* initial_drag, bool mid) {
+void run(benchmark::State& state, const std::string& name, const char* profile, const char* initial_drag, bool mid,
+         double lift_over_drag_scale = 1.0) {
   Fixture f;
   if (!setup(f, name, profile, initial_drag, mid)) {
     state.SkipWithError("planner setup failed");
     return;
   }
+  f.from.lift_over_drag_scale = lift_over_drag_scale;
   int iterations = 0;
   Status last = Status::kOk;
   for (auto _ : state) {
@@ -100,12 +102,16 @@ void run(benchmark::State& state, const std::string& name, const char* profile, 
   state.counters["length_iterations"] = iterations;
   state.counters["converged"] = f.planner->diagnostics().converged ? 1 : 0;
   state.counters["status"] = static_cast<int>(last);
+  state.counters["ranging_blend"] = f.profile->ranging_blend;
 }
 
 void BM_PlanFromEntry_X33(benchmark::State& s) { run(s, "x33", "three_segment", "actual", false); }
 void BM_PlanFromEntry_X33_Smooth(benchmark::State& s) { run(s, "x33", "smooth", "actual", false); }
 void BM_PlanFromEntry_Horus(benchmark::State& s) { run(s, "horus", "smooth", "actual", false); }  // mission defaults
 void BM_PlanUpdate_MidFlight_X33(benchmark::State& s) { run(s, "x33", "smooth", "actual", true); }
+// Worst case: a first ranging plan (65 % of the table L/D: the alpha blend is searched by
+// bisection, up to 7 extra length iterations); the repetitions start from a fresh planner.
+void BM_PlanRanging_X33(benchmark::State& s) { run(s, "x33", "smooth", "actual", false, 0.65); }
 
 
 }  // namespace
@@ -119,4 +125,5 @@ REENTRY_PLANNER_BENCH(BM_PlanFromEntry_X33);
 REENTRY_PLANNER_BENCH(BM_PlanFromEntry_X33_Smooth);
 REENTRY_PLANNER_BENCH(BM_PlanFromEntry_Horus);
 REENTRY_PLANNER_BENCH(BM_PlanUpdate_MidFlight_X33);
+REENTRY_PLANNER_BENCH(BM_PlanRanging_X33);
 
