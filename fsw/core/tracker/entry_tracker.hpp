@@ -113,7 +113,7 @@ class EntryTracker {
   };
   LateralTarget lateral_target(const RelativeState& s) const;
   bool modulation_allowed(double drag_ref, double drag_max) const;
-  double modulated_alpha(double alpha_rad, double mach, double lift_ratio) const;
+  double modulated_alpha(double alpha_rad, double mach, double lift_ratio, double max_rad) const;
   double reversal_lift_ratio(double sigma0_rad, double t_rel_s) const;
   double reversal_range_extension_m(const RelativeState& s, double alpha_rad, double sigma0_rad) const;
   void update_drag_scale(const RelativeState& s, double alpha_rad, double dt_s);
