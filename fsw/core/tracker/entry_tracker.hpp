@@ -15,8 +15,10 @@
 //                        filter after the tracker limits the rate), drag integrator frozen;
 //                        alpha is lowered meanwhile so that C_L cos(sigma(t)) stays C_L cos(sigma0)
 //                        (the roll through wings level would otherwise leave a climb that the
-//                        drag loop cannot remove before TAEM), and the range control allows for
-//                        the drag this costs in the final reversal;
+//                        drag loop cannot remove before TAEM; at most 15 deg in the final
+//                        reversal, 6 deg in the corridor reversals before it, whose drag deficit
+//                        the range control can correct only late), and the range control allows
+//                        for the drag this costs in the final reversal;
 //   terminal range       over the last 25 % of the energy span the drag reference gets a
 //                        range-to-go increment (quadratic in energy) vanishing at TAEM, and the
 //                        final drag is scaled by the sensed drag-to-model ratio, so that the
