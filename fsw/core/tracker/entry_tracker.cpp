@@ -392,7 +392,6 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     // shallow entry whose pull-out would level off below the reference is captured from a
     // tenth of the threshold drag on: its drag may never reach the threshold (skip-out).
     const double d_ref = reference_at(s.energy_Jpkg - kCaptureLookahead * entry_energy_Jpkg_).drag;
-    reference_at(s.energy_Jpkg);  // restore the lookup hint
     const double d_pullout = lift_up_pullout_drag_mps2(s);
     captured_ = d_pullout < d_ref ||
                 (s.drag_mps2 >= initial_descent_drag_mps2_ && d_pullout < kPullOutComplete * s.drag_mps2);
@@ -455,8 +454,8 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   // Constraint protection: the reference never asks for more drag than the sensed state
   // allows within the planned constraint fraction (the planner's bound is on the model
   // atmosphere; tracking lag and reversal transients must not eat the margin).
-  const double cd_here = models_.drag_coefficient(out.alpha_rad, s.energy_Jpkg, s.altitude_m);
-  ref.drag = std::fmin(ref.drag, constraint_drag_limit_mps2(s, out.alpha_rad, cd_here));
+  const double cd = models_.drag_coefficient(out.alpha_rad, s.energy_Jpkg, s.altitude_m);
+  ref.drag = std::fmin(ref.drag, constraint_drag_limit_mps2(s, out.alpha_rad, cd));
   const double sg = std::sin(s.flight_path_rad), cg = std::cos(s.flight_path_rad);
   const double V2 = V * V;
   // Sensed L/D where it is measurable, else the planned one (a lift-less or drag-less
@@ -469,7 +468,6 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   const double dlnrho_dr = models_.dlnrho_dr_fd(s.altitude_m, 100.0);
   const double de = 1e-3 * entry_energy_Jpkg_;
   const double e_a = s.energy_Jpkg + de, e_b = s.energy_Jpkg - de;
-  const double cd = models_.drag_coefficient(out.alpha_rad, s.energy_Jpkg, s.altitude_m);
   // alpha along the plan (which may differ from the mission profile: ranging alpha).
   const double cd_slope = models_.drag_coefficient_slope(ref.alpha + ref.alpha_prime * de, e_a, s.altitude_m,
                                                          ref.alpha - ref.alpha_prime * de, e_b, s.altitude_m);
