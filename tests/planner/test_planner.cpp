@@ -176,6 +176,33 @@ TEST(MissionGeometry, TrackErrorsOfKnownPoints) {
   EXPECT_NEAR(s.crossrange_rad / kDeg, 2.0, 1e-9);
 }
 
+TEST(MissionGeometry, GreatCirclePointLiesOnTheArc) {
+  // Independent truth: a point at fraction f of the arc is f * b from the start and
+  // (1 - f) * b from the end (7.1); along the equator the azimuth is 90 deg, along a
+  // meridian 0 deg; at the start it is the departure azimuth (7.2).
+  const double lat1 = -23.75 * kDeg, lon1 = 225.5 * kDeg, lat2 = 28.7 * kDeg, lon2 = 279.5 * kDeg;
+  const GreatCircle whole = great_circle(lat1, lon1, lat2, lon2);
+  for (double f : {0.0, 0.1, 0.37, 0.5, 0.9, 1.0}) {
+    const TrackPoint p = great_circle_point(lat1, lon1, lat2, lon2, f);
+    EXPECT_NEAR(great_circle(lat1, lon1, p.lat_rad, p.lon_rad).arc_rad, f * whole.arc_rad, 1e-9) << f;
+    EXPECT_NEAR(great_circle(p.lat_rad, p.lon_rad, lat2, lon2).arc_rad, (1.0 - f) * whole.arc_rad, 1e-9) << f;
+    // Azimuth continuity: a small step along the circle from p goes the way p's azimuth says.
+    const TrackPoint q = great_circle_point(lat1, lon1, lat2, lon2, f > 0.5 ? f - 1e-4 : f + 1e-4);
+    const double step_az = f > 0.5 ? wrap_pi(great_circle(q.lat_rad, q.lon_rad, p.lat_rad, p.lon_rad).azimuth_rad)
+                                   : great_circle(p.lat_rad, p.lon_rad, q.lat_rad, q.lon_rad).azimuth_rad;
+    EXPECT_NEAR(wrap_pi(step_az - p.azimuth_rad), 0.0, 1e-3) << f;
+  }
+  EXPECT_NEAR(great_circle_point(lat1, lon1, lat2, lon2, 0.0).azimuth_rad, whole.azimuth_rad, 1e-12);
+  const TrackPoint eq = great_circle_point(0.0, 0.0, 0.0, 60.0 * kDeg, 0.5);
+  EXPECT_NEAR(eq.lat_rad, 0.0, 1e-12);
+  EXPECT_NEAR(eq.lon_rad, 30.0 * kDeg, 1e-12);
+  EXPECT_NEAR(eq.azimuth_rad, 90.0 * kDeg, 1e-9);
+  EXPECT_NEAR(great_circle_point(0.0, 0.0, 0.0, 60.0 * kDeg, 1.0).azimuth_rad, 90.0 * kDeg, 1e-9);
+  const TrackPoint mer = great_circle_point(10.0 * kDeg, 20.0 * kDeg, 50.0 * kDeg, 20.0 * kDeg, 0.25);
+  EXPECT_NEAR(mer.lat_rad, 20.0 * kDeg, 1e-12);
+  EXPECT_NEAR(mer.azimuth_rad, 0.0, 1e-9);
+}
+
 // ---------------------------------------------------------------- drag profile length
 TEST(DragProfile, AnalyticLengthMatchesQuadrature) {
   std::mt19937_64 rng(12345);
@@ -525,3 +552,94 @@ TEST(EntryPlanner, ClosedCorridorIsReported) {
   EXPECT_EQ(out->status, Status::kCorridorClosed);
   EXPECT_GT(planner->diagnostics().corridor_closed_points, EntryPlanner::kGrid / 10);
 }
+
+#ifdef REENTRY_HAVE_CONFIG_LOADER
+TEST(EntryPlanner, CorridorFloorCarriesTheEarthRateTerm) {
+  // Closure floor: Lmin (7.7) with the Earth-rate term of (2.45). For the same vehicle and
+  // energy grid the floor of an eastbound mission lies below that of the mirrored westbound one by
+  // 4 omega V cos(lat) sin(chi) CD/CL in total, and their mean is the rotation-free (7.7).
+  // Independent truth: the rotation-free floor recomputed here from the on-board models.
+  config::LoadResult loaded = config::load_mission("orbiter");
+  ASSERT_TRUE(loaded.ok) << loaded.error;
+  config::Mission east = loaded.mission;
+  auto planner = std::make_unique<EntryPlanner>();
+  auto out = std::make_unique<ReferenceProfile>();
+  ASSERT_EQ(planner->init(east), Status::kOk);
+  planner->plan(planner->entry_state(), *out);
+  // With the term the Orbiter's 40 deg corridor is open (without it, closed over about a
+  // quarter of the grid between 7.2 and 5.5 km/s where the heat-flux limit is lowest).
+  EXPECT_EQ(planner->diagnostics().corridor_closed_points, 0);
+  double east_floor[EntryPlanner::kGrid], e_grid[EntryPlanner::kGrid];
+  for (int k = 0; k < EntryPlanner::kGrid; ++k) {
+    east_floor[k] = planner->corridor_floor(k);
+    e_grid[k] = planner->grid_energy(k);
+  }
+  // Mirror image about the entry meridian: westbound, same latitudes, same great-circle length.
+  config::Mission west = east;
+  west.entry.heading_rad = -east.entry.heading_rad;
+  west.taem.longitude_rad = 2.0 * east.entry.longitude_rad - east.taem.longitude_rad;
+  west.taem.heading_rad = -east.taem.heading_rad;
+  auto planner_w = std::make_unique<EntryPlanner>();
+  ASSERT_EQ(planner_w->init(west), Status::kOk);
+  planner_w->plan(planner_w->entry_state(), *out);
+  OnboardModels models;
+  ASSERT_EQ(models.init(east), Status::kOk);
+  AlphaProfile alpha;
+  ASSERT_EQ(alpha.init(east.alpha_profile), Status::kOk);
+  int checked = 0;
+  for (int k = 0; k < EntryPlanner::kGrid; k += 20) {
+    ASSERT_NEAR(planner_w->grid_energy(k), e_grid[k], 1e-6 * e_grid[k]);
+    const double west_floor = planner_w->corridor_floor(k);
+    EXPECT_DOUBLE_EQ(planner->corridor_min(k), planner_w->corridor_min(k)) << k;  // (7.7) itself
+    EXPECT_LT(east_floor[k], west_floor) << k;
+    // Rotation-free floor at the zero-bank equilibrium-glide altitude of this energy.
+    const double a = alpha.alpha_rad(e_grid[k] / planner->entry_energy_Jpkg());
+    double h_lo = 0.0, h_hi = 150e3;
+    auto residual = [&](double h) {
+      const double r = kEarthRadius_m + h, v = velocity_from_energy_mps(e_grid[k], r);
+      return models.lift_mps2(a, h, v) - (gravity_mps2(r) - v * v / r);
+    };
+    if (!(residual(h_lo) > 0.0 && residual(h_hi) < 0.0)) continue;
+    for (int i = 0; i < 100; ++i) (residual(0.5 * (h_lo + h_hi)) > 0.0 ? h_lo : h_hi) = 0.5 * (h_lo + h_hi);
+    const double r = kEarthRadius_m + h_lo, v = velocity_from_energy_mps(e_grid[k], r);
+    double cl, cd;
+    models.aero().coefficients(a, models.mach(h_lo, v), cl, cd);
+    const double floor_no_rotation = (gravity_mps2(r) - v * v / r) * cd / cl;
+    EXPECT_NEAR(0.5 * (east_floor[k] + west_floor), floor_no_rotation, 0.01 * floor_no_rotation + 1e-3) << k;
+    ++checked;
+  }
+  EXPECT_GT(checked, 5);
+}
+
+TEST(EntryPlanner, OrbiterMissionRangeIsShorterThanItsHeatLimitedMinimum) {
+  // Table 3.3 as we read it: 6534 km from entry to TAEM, but flying the heat-flux limit
+  // (Chapman, 0.3 m nose, 70 BTU/ft^2/s) all the way takes about 9200 km. No profile fits:
+  // the planner must say so (not converged, range long), not hand out a plan.
+  config::LoadResult loaded = config::load_mission("orbiter");
+  ASSERT_TRUE(loaded.ok) << loaded.error;
+  auto planner = std::make_unique<EntryPlanner>();
+  auto out = std::make_unique<ReferenceProfile>();
+  ASSERT_EQ(planner->init(loaded.mission), Status::kOk);
+  const Status s = planner->plan(planner->entry_state(), *out);
+  EXPECT_NE(s, Status::kOk);
+  EXPECT_FALSE(out->converged);
+  double min_range_m = 0.0;  // int dE / D_max over the grid (trapezoid in 1/D)
+  for (int k = 0; k + 1 < EntryPlanner::kGrid; ++k) {
+    const double de = planner->grid_energy(k) - planner->grid_energy(k + 1);
+    min_range_m += 0.5 * de * (1.0 / planner->corridor_max(k) + 1.0 / planner->corridor_max(k + 1));
+  }
+  EXPECT_GT(min_range_m, 1.3 * planner->diagnostics().s_initial_m);
+}
+
+TEST(EntryPlanner, LowLiftLongRangeMovesAlphaToTurn) {
+  // X-38 (table 3.3): 9360 km at L/D about 1. At the profile alpha the bank the range needs is
+  // so small that no single reversal nulls the 57 km crossrange; the planner moves alpha
+  // towards alpha(L/D max) until a reversal brackets it. Checked by the independent ground track.
+  config::LoadResult loaded = config::load_mission("x38");
+  ASSERT_TRUE(loaded.ok) << loaded.error;
+  const CaseResult r = run_case(loaded.mission, "smooth", "actual");
+  expect_converged(r);
+  EXPECT_GT(r.diag.ranging_blend, 0.0);
+  EXPECT_FALSE(r.diag.reversal_best_effort);
+}
+#endif

@@ -178,6 +178,7 @@ void EntryPlanner::corridor() {
   const double s_over_m = models_.area_over_mass();
   const double c_heat = models_.heat_flux_constant();
   const double two_c2m2 = 2.0 * (OnboardModels::kHeatC2 - 1.0);
+  const double span = e0_ - taem_energy_;
   for (int k = 0; k < kGrid; ++k) {
     const double r = r_[k];
     const double h = r - kEarthRadius_m;
@@ -196,6 +197,16 @@ void EntryPlanner::corridor() {
     if (d_q < dmax) dmax = d_q;
     d_max_[k] = dmax;
     d_min_[k] = (g - v * v / r) * cd / cl;                                                                  // (7.7)
+    // Feasibility floor: (7.7) with the Earth-rate term of (2.45) (see below_glide_floor), lat
+    // and chi on the planning-point -> TAEM great circle at the energy fraction (the range
+    // fraction is not known before the fit). (7.7) itself stays the thesis's Lmin for the
+    // initial drag and the E2 breakpoint; the closure test needs the floor the vehicle really
+    // has: for the eastbound Orbiter at 40 deg alpha the rotation-free Lmin lies above the
+    // heat-flux limit between 7.2 and 5.5 km/s, the true floor below it.
+    const double f = span > 0.0 ? (e0_ - e_[k]) / span : 0.0;
+    const TrackPoint p = great_circle_point(from_.latitude_rad, from_.longitude_rad, taem_lat_, taem_lon_, f);
+    const double need = g - v * v / r - 2.0 * kEarthRate_radps * v * std::cos(p.lat_rad) * std::sin(p.azimuth_rad);
+    d_floor_[k] = need * cd / cl;
   }
 }
 
@@ -521,7 +532,10 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
         best_s = s_end;
       }
     }
-    if (!(best_abs < kBestEffortCrossrangeFraction * diag_.b_mission_rad)) return root.status;
+    if (!(best_abs < kBestEffortCrossrangeFraction * diag_.b_mission_rad)) {
+      lateral_unreachable_ = true;
+      return root.status;
+    }
     s_rev = best_s;
     s = integrate(s_rev, false, end);
     if (s != Status::kOk) return s;
@@ -551,8 +565,8 @@ Status EntryPlanner::prepare_corridor(double d_actual) {
   // a corridor closed over more than kMaxClosedFraction of the grid is a failure.
   int closed = 0;
   for (int k = 0; k < kGrid; ++k) {
-    if (!std::isfinite(d_min_[k]) || !(d_max_[k] > 0.0)) return Status::kCorridorClosed;
-    if (d_max_[k] <= d_min_[k]) ++closed;
+    if (!std::isfinite(d_floor_[k]) || !(d_max_[k] > 0.0)) return Status::kCorridorClosed;
+    if (d_max_[k] <= d_floor_[k]) ++closed;
   }
   diag_.corridor_closed_points = closed;
   if (closed > kMaxClosedFraction * kGrid) return Status::kCorridorClosed;
@@ -590,6 +604,16 @@ Status EntryPlanner::length_iteration(double range_desired, double& s_m, double&
   return Status::kOk;
 }
 
+bool EntryPlanner::lateral_short() const {
+  // No single reversal nulls the crossrange and the best effort leaves more than the
+  // tolerance: the bank needed for the range is too small to turn (low L/D, long range).
+  // Judged only in the first half of the energy span: later, a best-effort plan just after a
+  // flown reversal is normal and the lateral corridor steers the rest out.
+  const double half = taem_energy_ + 0.5 * (entry_energy_ - taem_energy_);
+  return from_.energy_Jpkg > half &&
+         (lateral_unreachable_ || (diag_.reversal_best_effort && std::fabs(diag_.crossrange_err_m) > crossrange_tol_m_));
+}
+
 bool EntryPlanner::below_glide_floor() const {
   // The drag the range needs is below the wings-level equilibrium glide somewhere between
   // the end of the capture part of the profile (where it first reaches the floor, or after
@@ -600,23 +624,12 @@ bool EntryPlanner::below_glide_floor() const {
   // lat and chi on the planning-point -> TAEM great circle at the planned range fraction.
   const double span = e0_ - taem_energy_;
   const double e_terminal = taem_energy_ + kTerminalSpanFraction * (entry_energy_ - taem_energy_);
-  const double slat0 = std::sin(from_.latitude_rad), clat0 = std::cos(from_.latitude_rad);
-  const double slat1 = std::sin(taem_lat_), clat1 = std::cos(taem_lat_);
-  const double p0[3] = {clat0 * std::cos(from_.longitude_rad), clat0 * std::sin(from_.longitude_rad), slat0};
-  const double p1[3] = {clat1 * std::cos(taem_lon_), clat1 * std::sin(taem_lon_), slat1};
-  const double arc = diag_.b_mission_rad;
   const double s_end = s_cum_[kGrid - 1];
   bool entered = false;
   for (int k = 0; k < kGrid && e_[k] > e_terminal; ++k) {
-    // Point at fraction f of the great circle (spherical interpolation) and its azimuth.
-    const double f = s_end > 0.0 ? clamp(s_cum_[k] / s_end, 0.0, 1.0) : 0.0;
-    double lat = from_.latitude_rad, chi = a_mission_;
-    if (arc > 1e-6) {
-      const double w0 = std::sin((1.0 - f) * arc) / std::sin(arc), w1 = std::sin(f * arc) / std::sin(arc);
-      const double x = w0 * p0[0] + w1 * p1[0], y = w0 * p0[1] + w1 * p1[1], z = w0 * p0[2] + w1 * p1[2];
-      lat = std::atan2(z, std::hypot(x, y));
-      if (f < 1.0 - 1e-9) chi = great_circle(lat, std::atan2(y, x), taem_lat_, taem_lon_).azimuth_rad;
-    }
+    const double f = s_end > 0.0 ? s_cum_[k] / s_end : 0.0;  // planned range fraction
+    const TrackPoint p = great_circle_point(from_.latitude_rad, from_.longitude_rad, taem_lat_, taem_lon_, f);
+    const double lat = p.lat_rad, chi = p.azimuth_rad;
     const double v = v_[k], r = r_[k];
     const double need = gravity_mps2(r) - v * v / r - 2.0 * kEarthRate_radps * v * std::cos(lat) * std::sin(chi);
     const double floor = need / lod_[k];
@@ -710,23 +723,30 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   if (s != Status::kOk) return fail(s);
   double s_rev = 0.0;
   bool converged = false;
+  lateral_unreachable_ = false;
   s = length_iteration(range_desired, s_m, s_rev, converged);
-  if (s == Status::kOk && (ranging_blend_min_ > 0.0 || below_glide_floor())) {
+  const Status first = s;
+  const bool lateral = lateral_short();
+  if ((s == Status::kOk || lateral) && (ranging_blend_min_ > 0.0 || lateral || below_glide_floor())) {
     // Ranging alpha (thesis 6.3.1, ranging phase): the range needs less drag than the
     // vehicle can hold even wings level at the profile alpha (low L/D, a long way to go).
     // alpha moves towards alpha(L/D max) from the planning point to near TAEM; the smallest
     // move that lifts the floor below the needed drag is found by bisection on the blend
     // (the full move when even that is not enough: the longest range the vehicle can fly).
-    // Once used, the blend never decreases in later plans, so the alpha reference stays
-    // continuous from plan to plan. (Aiming the blend at a bank margin above the floor was
+    // The same move is made when no single reversal can null the crossrange early in the
+    // flight (lateral_short): at the profile alpha the X-38 needs so little bank for its
+    // 9360 km that it cannot turn. Once used, the blend never decreases in later plans, so
+    // the alpha reference stays continuous from plan to plan. (Aiming the blend at a bank margin above the floor was
     // measured worse: 500 dispersed X-33 runs 61.4 % with 10 deg, 67.8 % with none.)
     alpha_ld_max_on_grid();
     auto feasible = [&](double blend) {
       set_ranging_blend(blend);
       double s_trial = range_desired;
       bool conv_trial = false;
+      lateral_unreachable_ = false;
       if (prepare_corridor(d_actual) != Status::kOk) return false;
-      return length_iteration(range_desired, s_trial, s_rev, conv_trial) == Status::kOk && !below_glide_floor();
+      return length_iteration(range_desired, s_trial, s_rev, conv_trial) == Status::kOk && !below_glide_floor() &&
+             !lateral_short();
     };
     double lo = ranging_blend_min_, hi = 1.0;
     if (ranging_blend_min_ > 0.0 && feasible(ranging_blend_min_)) hi = lo;
@@ -736,10 +756,11 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
       else lo = mid;
     }
     set_ranging_blend(hi);
+    lateral_unreachable_ = false;
     s_m = range_desired;
     s = prepare_corridor(d_actual);
-    if (s != Status::kOk) return fail(s);
-    s = length_iteration(range_desired, s_m, s_rev, converged);
+    if (s == Status::kOk) s = length_iteration(range_desired, s_m, s_rev, converged);
+    if (s != Status::kOk && first != Status::kOk) s = first;  // report the original failure
   }
   if (s != Status::kOk) return fail(s);
   Rop end{};

@@ -68,9 +68,11 @@ class EntryPlanner {
   double taem_energy_Jpkg() const { return taem_energy_; }
   /// RelativeState at the mission entry interface, drag from the on-board models.
   RelativeState entry_state() const;
-  /// Active maximum-drag and minimum-drag (Lmin) corridor of the last plan, on the grid.
+  /// Active maximum-drag and minimum-drag (Lmin (7.7), rotation-free) corridor of the last plan, on the grid.
   double corridor_max(int k) const { return d_max_[k]; }
   double corridor_min(int k) const { return d_min_[k]; }
+  /// Lmin with the Earth-rate term of (2.45): the floor the closure test uses.
+  double corridor_floor(int k) const { return d_floor_[k]; }
   double grid_energy(int k) const { return e_[k]; }
 
  private:
@@ -80,6 +82,7 @@ class EntryPlanner {
   Status prepare_corridor(double d_actual);
   Status length_iteration(double range_desired, double& s_m, double& s_rev, bool& converged);
   bool below_glide_floor() const;
+  bool lateral_short() const;
   void alpha_ld_max_on_grid();
   void set_ranging_blend(double blend);
   Status equilibrium_glide_radius();
@@ -112,6 +115,7 @@ class EntryPlanner {
   double taem_radius_ = 0.0, taem_velocity_ = 0.0, taem_lat_ = 0.0, taem_lon_ = 0.0;
   double heat_max_ = 0.0, q_alpha_max_ = 0.0, n_max_ = 0.0, q_max_ = 0.0;
   double alpha_max_ = 0.0;
+  bool lateral_unreachable_ = false;  // reversal search: no bracket, best effort beyond its limit
   double ranging_blend_min_ = 0.0;  // blend of the last converged plan (never decreases in flight)
   double sigma_rate_max_ = 0.0;
   int rk4_steps_ = 600;
@@ -138,6 +142,7 @@ class EntryPlanner {
   double r_[kGrid] = {};
   double v_[kGrid] = {};
   double d_min_[kGrid] = {};
+  double d_floor_[kGrid] = {};  // Lmin with the Earth-rate term: the closure test
   double d_max_[kGrid] = {};
   double d_heat_[kGrid] = {};
   double d_qalpha_[kGrid] = {};

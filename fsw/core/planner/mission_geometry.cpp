@@ -28,6 +28,28 @@ GreatCircle great_circle(double lat1_rad, double lon1_rad, double lat2_rad, doub
   return g;
 }
 
+TrackPoint great_circle_point(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad, double fraction) {
+  const GreatCircle whole = great_circle(lat1_rad, lon1_rad, lat2_rad, lon2_rad);
+  TrackPoint p{lat1_rad, lon1_rad, whole.azimuth_rad};
+  const double arc = whole.arc_rad;
+  if (!(arc > 1e-9)) return p;
+  const double f = fraction < 0.0 ? 0.0 : (fraction > 1.0 ? 1.0 : fraction);
+  const double w0 = std::sin((1.0 - f) * arc) / std::sin(arc), w1 = std::sin(f * arc) / std::sin(arc);
+  const double c1 = std::cos(lat1_rad), c2 = std::cos(lat2_rad);
+  const double x = w0 * c1 * std::cos(lon1_rad) + w1 * c2 * std::cos(lon2_rad);
+  const double y = w0 * c1 * std::sin(lon1_rad) + w1 * c2 * std::sin(lon2_rad);
+  const double z = w0 * std::sin(lat1_rad) + w1 * std::sin(lat2_rad);
+  p.lat_rad = std::atan2(z, std::hypot(x, y));
+  p.lon_rad = std::atan2(y, x);
+  if (f < 1.0 - 1e-9) {
+    p.azimuth_rad = great_circle(p.lat_rad, p.lon_rad, lat2_rad, lon2_rad).azimuth_rad;
+  } else {
+    // At the end point: the arrival azimuth is the reverse of the departure azimuth from point 2, turned by pi.
+    p.azimuth_rad = wrap_pi(great_circle(lat2_rad, lon2_rad, lat1_rad, lon1_rad).azimuth_rad + M_PI);
+  }
+  return p;
+}
+
 TrackErrors track_errors(double lat_entry_rad, double lon_entry_rad, double azimuth_mission_rad,
                          double lat_x_rad, double lon_x_rad) {
   // Steps 1-2: triangle 1 gives b1 and A1 (heading of X seen from the entry point).

@@ -11,6 +11,15 @@ struct GreatCircle {
 };
 GreatCircle great_circle(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad);
 
+/// Point at fraction f in [0, 1] of the great circle from point 1 to point 2 (spherical
+/// linear interpolation) and the azimuth of the circle there, radians.
+struct TrackPoint {
+  double lat_rad = 0.0;
+  double lon_rad = 0.0;
+  double azimuth_rad = 0.0;
+};
+TrackPoint great_circle_point(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad, double fraction);
+
 /// Triangle steps 1-4 of §7.4: cross-range error a2 (signed, + right of the entry->TAEM
 /// great circle) and downrange b2 projected on that circle, for the end point X.
 struct TrackErrors {
