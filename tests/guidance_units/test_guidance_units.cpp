@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "filter/rate_filter.hpp"
@@ -285,6 +286,43 @@ TEST(Tracker, WingsLevelPullOutDragMatchesNumericalIntegration) {
   EXPECT_EQ(wings_level_pullout_drag_mps2(d0, 0.0, -100.0, g_eff, H), kNoPullOut_mps2);
 }
 
+TEST(Tracker, PullOutAfterARollIsBoundedByNumericalIntegration) {
+  // Independent truth: RK4 of h'' = (L/D) D0 exp(-(h - h0) / H) cos(sigma(t)) - g_eff with
+  // the bank rolled uniformly from sigma0 to 0 over t_roll, then wings level to the bottom.
+  // The prediction leaves out the lift growing with the density over the roll: it may only
+  // err deep (conservative), and by little.
+  const double H = 7000.0, lod = 1.0, g_eff = 0.9, d0 = 1.0;
+  for (double sigma0_deg : {45.0, 90.0, 135.0, 180.0}) {
+    for (double h_dot0 : {-60.0, -150.0}) {
+      const double sigma0 = sigma0_deg * M_PI / 180.0, t_roll = sigma0_deg / 10.0;  // 10 deg/s
+      double h = 0.0, v = h_dot0, t = 0.0;
+      const double dt = 1e-3;
+      auto acc = [&](double tt, double hh) {
+        const double sigma = tt < t_roll ? sigma0 * (1.0 - tt / t_roll) : 0.0;
+        return lod * d0 * std::exp(-hh / H) * std::cos(sigma) - g_eff;
+      };
+      for (int i = 0; i < 10000000 && (v < 0.0 || t < t_roll); ++i) {
+        const double k1h = v, k1v = acc(t, h);
+        const double k2h = v + 0.5 * dt * k1v, k2v = acc(t + 0.5 * dt, h + 0.5 * dt * k1h);
+        const double k3h = v + 0.5 * dt * k2v, k3v = acc(t + 0.5 * dt, h + 0.5 * dt * k2h);
+        const double k4h = v + dt * k3v, k4v = acc(t + dt, h + dt * k3h);
+        h += dt / 6.0 * (k1h + 2.0 * k2h + 2.0 * k3h + k4h);
+        v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+        t += dt;
+        if (t >= t_roll && v >= 0.0) break;
+      }
+      const double d_bottom = d0 * std::exp(-h / H);  // lowest point: v = 0 after the roll
+      const double predicted = pullout_drag_after_roll_mps2(d0, lod, h_dot0, g_eff, H, sigma0, t_roll);
+      std::printf("sigma0 %.0f h_dot %.0f: predicted %.4f integrated %.4f\n", sigma0_deg, h_dot0, predicted, d_bottom);
+      EXPECT_GE(predicted, 0.99 * d_bottom) << sigma0_deg << " " << h_dot0;
+      EXPECT_LE(predicted, 1.03 * d_bottom) << sigma0_deg << " " << h_dot0;
+    }
+  }
+  // No roll: the wings-level pull-out itself.
+  EXPECT_DOUBLE_EQ(pullout_drag_after_roll_mps2(d0, lod, -100.0, g_eff, H, 0.0, 5.0),
+                   wings_level_pullout_drag_mps2(d0, lod, -100.0, g_eff, H));
+}
+
 namespace {
 // A tracker flying mid-profile (captured, level) and the state it was given.
 struct MidProfile {
@@ -341,6 +379,67 @@ TEST(Tracker, DragReferenceNeverExceedsTheSensedConstraintBound) {
   ASSERT_EQ(out.phase, Phase::kTracking);
   EXPECT_NEAR(out.drag_ref_mps2, 0.97 * 0.5 * m->state.drag_mps2, 1e-9 * m->state.drag_mps2);
   EXPECT_LT(out.drag_ref_mps2, 0.6 * d_planned);
+}
+
+TEST(Tracker, PullOutGuardStopsADiveThatWouldOvershootTheHeatLimit) {
+  // Just after capture, below the planned drag ramp and sinking at 1.5 deg: the linear drag
+  // loop asks for lift down. With the heat-flux limit set so that the sensed bound is 1.3 D,
+  // the wings-level pull-out from this dive bottoms out far above it (checked independently
+  // below by RK4 in the on-board scale height), so the guard must command wings level. The
+  // same state level (gamma = 0, the descent arrested: guard off for good) keeps the drag
+  // loop's bank.
+  constexpr double kFraction = 0.3;
+  auto m = mid_profile_tracker(kFraction);
+  ASSERT_NE(m, nullptr);
+  RelativeState s = m->state;
+  const int k = static_cast<int>(kFraction * (m->profile->n_points - 1));
+  s.drag_mps2 = 0.8 * m->profile->drag_mps2[k];
+  s.lift_mps2 = s.drag_mps2 * m->profile->lift_over_drag[k];
+  s.flight_path_rad = -1.5 * M_PI / 180.0;
+  OnboardModels models;
+  ASSERT_EQ(models.init(m->mission), Status::kOk);
+  const double alpha = m->profile->alpha_rad[k];
+  const double cd = models.drag_coefficient(alpha, s.energy_Jpkg, s.altitude_m);
+  const double q = s.drag_mps2 / (cd * models.area_over_mass());
+  const double heat = models.heat_flux_Wpm2(2.0 * q / (s.velocity_mps * s.velocity_mps), s.velocity_mps);
+  config::Mission tight = m->mission;
+  tight.constraints.heat_flux_max_Wpm2 = heat * std::sqrt(1.3) / 0.97;  // drag bound 1.3 D
+  // Independent check that the dive cannot be stopped below 1.3 D: RK4 of the wings-level
+  // vertical motion, h'' = (L/D) D exp(-dh / H) - g_eff, from the sink rate.
+  const double H = -1.0 / models.dlnrho_dr_fd(s.altitude_m, 100.0);
+  const double v_h = s.velocity_mps * std::cos(s.flight_path_rad);
+  const double g_eff = gravity_mps2(s.radius_m) - v_h * v_h / s.radius_m;  // no Earth rate: conservative
+  double h = 0.0, v = s.velocity_mps * std::sin(s.flight_path_rad);
+  const double lod = s.lift_mps2 / s.drag_mps2;
+  for (int i = 0; i < 1000000 && v < 0.0; ++i) {
+    v += 1e-3 * (lod * s.drag_mps2 * std::exp(-h / H) - g_eff);
+    h += 1e-3 * v;
+  }
+  ASSERT_GT(s.drag_mps2 * std::exp(-h / H), 1.3 * s.drag_mps2);
+
+  // Captured first in a shallow descent well below the reference (its pull-out would level
+  // off below it, not yet complete), then the dive.
+  RelativeState capture = s;
+  capture.drag_mps2 = m->profile->drag_mps2[k];
+  capture.lift_mps2 = capture.drag_mps2 * lod;
+  capture.flight_path_rad = -0.5 * M_PI / 180.0;
+  TrackerOutput out;
+  ASSERT_EQ(m->tracker.init(tight), Status::kOk);
+  m->tracker.set_profile(*m->profile);
+  ASSERT_EQ(m->tracker.step(capture, 0.1, out), Status::kOk);
+  ASSERT_EQ(out.phase, Phase::kTracking) << m->profile->drag_mps2[k] << " e " << m->profile->e_norm[k];
+  ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
+  EXPECT_NEAR(out.sigma_rad, 0.0, 1e-12);
+  EXPECT_NEAR(out.u_drag, lod, 1e-12);
+
+  RelativeState level = s;
+  level.flight_path_rad = 0.0;
+  ASSERT_EQ(m->tracker.init(tight), Status::kOk);
+  m->tracker.set_profile(*m->profile);
+  ASSERT_EQ(m->tracker.step(capture, 0.1, out), Status::kOk);
+  ASSERT_EQ(m->tracker.step(level, 0.1, out), Status::kOk);
+  ASSERT_EQ(out.phase, Phase::kTracking);
+  EXPECT_GT(std::fabs(out.sigma_rad), 10.0 * M_PI / 180.0);  // below the reference: bank to descend
 }
 
 TEST(Tracker, LiftOverDragEstimateConvergesToTheSensedRatio) {

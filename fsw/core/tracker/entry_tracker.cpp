@@ -56,6 +56,7 @@ constexpr double kMaxDragScale = 2.0;
 constexpr double kSkipCaptureDragFraction = 0.1;  // of the initial-descent drag (see capture)
 constexpr double kCaptureLookahead = 0.02;  // reference compared at E - 2 % of E_entry (pull-out energy)
 constexpr double kPullOutComplete = 1.05;  // pull-out counted as complete when D would rise < 5 % more
+constexpr double kRollLag_s = 1.0;  // bank filter lag added to the roll time of the pull-out guard
 constexpr double kMinLodScale = 0.5;   // bounds of the L/D estimate (model / 2 .. model x 1.5)
 constexpr double kMaxLodScale = 1.5;
 constexpr double kEarthFlattening = 1.0 / 298.257223563;  // WGS-84
@@ -124,11 +125,13 @@ Status EntryTracker::init(const config::Mission& mission) {
   if (!(sigma_rate_max_radps_ > 0.0) || !(gains_.omega0_radps > 0.0)) return Status::kInvalidInput;
   has_profile_ = false;
   captured_ = false;
+  first_pullout_done_ = false;
   drag_integral_ = 0.0;
   heading_integral_ = 0.0;
   drag_scale_ = 1.0;
   lod_scale_ = 1.0;
   last_alpha_cmd_rad_ = 0.0;
+  last_sigma_d_rad_ = 0.0;
   final_reversal_done_ = false;
   last_sign_ = 0;
   reversal_until_t_s_ = -1.0;
@@ -314,9 +317,25 @@ double wings_level_pullout_drag_mps2(double drag_mps2, double lift_over_drag, do
   return d_p;
 }
 
-double EntryTracker::lift_up_pullout_drag_mps2(const RelativeState& s) const {
+double pullout_drag_after_roll_mps2(double drag_mps2, double lift_over_drag, double h_dot_mps, double g_eff_mps2,
+                                    double scale_height_m, double sigma0_rad, double t_roll_s) {
+  double h_dot = h_dot_mps, drag = drag_mps2;
+  const double sigma = std::fabs(sigma0_rad);
+  if (sigma > 1e-6 && t_roll_s > 0.0 && drag_mps2 > 0.0 && scale_height_m > 0.0) {
+    const double h_ddot = lift_over_drag * drag_mps2 * std::sin(sigma) / sigma - g_eff_mps2;
+    const double dh = h_dot * t_roll_s + 0.5 * h_ddot * t_roll_s * t_roll_s;
+    h_dot += h_ddot * t_roll_s;
+    drag *= std::exp(std::fmin(-dh / scale_height_m, 5.0));  // bounded: e^5 is far past any limit
+  }
+  return wings_level_pullout_drag_mps2(drag, lift_over_drag, h_dot, g_eff_mps2, scale_height_m);
+}
+
+double EntryTracker::lift_up_pullout_drag_mps2(const RelativeState& s, double sigma_now_rad) const {
   // Drag at the bottom of a wings-level pull-out from the present state, in the local scale
-  // height of the on-board atmosphere, with the sensed L/D.
+  // height of the on-board atmosphere, with the sensed L/D. From a bank sigma_now the roll to
+  // wings level takes sigma_now / sigma_rate_max (plus the filter lag), flown with the mean
+  // vertical lift L sin(sigma) / sigma of a uniform roll: the pull-out starts from the state
+  // at its end (descent rate and drag propagated at constant vertical acceleration).
   const double D = s.drag_mps2;
   if (!(D > kMinDrag_mps2)) return D;
   const double dlnrho_dr = models_.dlnrho_dr_fd(s.altitude_m, 100.0);
@@ -326,8 +345,10 @@ double EntryTracker::lift_up_pullout_drag_mps2(const RelativeState& s) const {
   const double v_h = s.velocity_mps * std::cos(s.flight_path_rad);
   const double g_eff = gravity_mps2(s.radius_m) - v_h * v_h / s.radius_m -
                        2.0 * kEarthRate_radps * v_h * std::cos(s.latitude_rad) * std::sin(s.heading_rad);
-  return wings_level_pullout_drag_mps2(D, s.lift_mps2 / D, s.velocity_mps * std::sin(s.flight_path_rad), g_eff,
-                                       -1.0 / dlnrho_dr);
+  const double sigma = std::fabs(sigma_now_rad);
+  const double t_roll = sigma_rate_max_radps_ > 0.0 && sigma > 1e-6 ? sigma / sigma_rate_max_radps_ + kRollLag_s : 0.0;
+  return pullout_drag_after_roll_mps2(D, s.lift_mps2 / D, s.velocity_mps * std::sin(s.flight_path_rad), g_eff,
+                                      -1.0 / dlnrho_dr, sigma, t_roll);
 }
 
 double EntryTracker::constraint_drag_limit_mps2(const RelativeState& s, double alpha_rad, double cd) const {
@@ -496,6 +517,18 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   const double u_ref = ref.lod * std::cos(ref.sigma);
   double u_drag = u_ref + (d2_cmd - ref.drag_second) / b;                    // (3.10)
   out.saturated = std::fabs(u_drag) > lod;
+  if (!first_pullout_done_) first_pullout_done_ = lift_up_pullout_drag_mps2(s) < kPullOutComplete * D;
+  if (!first_pullout_done_ && !terminal && u_drag < lod) {
+    // Pull-out guard, from capture until the entry descent is arrested: a descent whose
+    // wings-level pull-out, started after the roll out of the present bank, would bottom out
+    // above the sensed constraint limit is stopped now with full lift. The linear drag loop
+    // alone follows the planned drag ramp after capture with lift down and reaches the
+    // plateau in a dive it can no longer arrest (HORUS: drag 5 against 2.7, heat flux 700
+    // kW/m^2 against 530). Later, on the plateau, small descents are the drag loop's own.
+    const double d_guard = std::fmin(constraint_drag_limit_mps2(s, out.alpha_rad, cd),
+                                     ref.drag_max > 0.0 ? ref.drag_max * std::fmin(drag_scale_, 1.0) : 1e300);
+    if (lift_up_pullout_drag_mps2(s, last_sigma_d_rad_) > d_guard) u_drag = lod;
+  }
   u_drag = clamp(u_drag, -lod, lod);
   out.u_drag = u_drag;
   const double sigma_d = std::acos(clamp(u_drag / lod, -1.0, 1.0));          // (3.20)
@@ -586,6 +619,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   out.sigma_rad = sign_ref * sigma_d;
   if (!std::isfinite(out.sigma_rad) || !std::isfinite(out.alpha_rad)) return Status::kNonFinite;
   out.sigma_d_rad = sigma_d;
+  last_sigma_d_rad_ = sigma_d;
   out.sigma_chi_rad = sigma_chi;
   out.phase = s.t_s < reversal_until_t_s_ ? Phase::kReversal : Phase::kTracking;
   out.drag_ref_mps2 = ref.drag;

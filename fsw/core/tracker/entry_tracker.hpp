@@ -67,6 +67,12 @@ struct TrackerOutput {
 inline constexpr double kNoPullOut_mps2 = 1e6;
 double wings_level_pullout_drag_mps2(double drag_mps2, double lift_over_drag, double h_dot_mps, double g_eff_mps2,
                                      double scale_height_m);
+/// The same pull-out started after a roll from bank sigma0 to wings level lasting t_roll:
+/// the roll is flown with the mean vertical lift L sin(sigma0) / sigma0 of a uniform roll at
+/// the present lift and constant vertical acceleration (conservative: the lift growing with
+/// the density over the roll is left out), then the wings-level pull-out.
+double pullout_drag_after_roll_mps2(double drag_mps2, double lift_over_drag, double h_dot_mps, double g_eff_mps2,
+                                    double scale_height_m, double sigma0_rad, double t_roll_s);
 
 /// The documented gain rule (no per-vehicle tuning):
 ///  - omega0 = 2 sqrt(g0 / H), twice the natural frequency sqrt(g/H) of the altitude mode of a
@@ -120,7 +126,7 @@ class EntryTracker {
   double reversal_range_extension_m(const RelativeState& s, double alpha_rad, double sigma0_rad) const;
   void update_drag_scale(const RelativeState& s, double alpha_rad, double dt_s);
   void update_lod_scale(const RelativeState& s, double alpha_rad, double dt_s);
-  double lift_up_pullout_drag_mps2(const RelativeState& s) const;
+  double lift_up_pullout_drag_mps2(const RelativeState& s, double sigma_now_rad = 0.0) const;
   double constraint_drag_limit_mps2(const RelativeState& s, double alpha_rad, double cd) const;
 
   OnboardModels models_;
@@ -148,11 +154,13 @@ class EntryTracker {
   bool has_profile_ = false;
   int hint_ = 0;
   bool captured_ = false;           // initial descent over
+  bool first_pullout_done_ = false; // the descent of the capture has been arrested (guard off)
   double drag_integral_ = 0.0;      // int (D - D_ref) dt
   double heading_integral_ = 0.0;   // int (chi_ref - chi) dE
   double drag_scale_ = 1.0;         // sensed drag / model drag, filtered
   double lod_scale_ = 1.0;          // sensed L/D / model L/D, filtered
   double last_alpha_cmd_rad_ = 0.0; // alpha commanded in the previous cycle
+  double last_sigma_d_rad_ = 0.0;   // bank magnitude commanded in the previous cycle
   bool final_reversal_done_ = false;
   int last_sign_ = 0;
   double reversal_until_t_s_ = -1.0;
