@@ -13,6 +13,7 @@ const char* to_string(Status s) {
     case Status::kExtractionFailed: return "extraction_failed";
     case Status::kNotConverged: return "not_converged";
     case Status::kCapacityExceeded: return "capacity_exceeded";
+    case Status::kRangeTooLong: return "range_too_long";
   }
   return "unknown";
 }

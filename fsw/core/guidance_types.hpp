@@ -21,6 +21,7 @@ enum class Status : std::int8_t {
   kExtractionFailed = 6,    // r(E) / gamma(E) / bank extraction impossible
   kNotConverged = 7,        // trajectory-length iteration did not meet tolerances
   kCapacityExceeded = 8,
+  kRangeTooLong = 9,        // even the maximum-drag profile flies past the aim point (best effort given)
 };
 
 const char* to_string(Status s);

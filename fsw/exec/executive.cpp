@@ -116,12 +116,18 @@ void Executive::adopt(PlanResult& r, double t_s, CycleOutput& out) {
   counters_.planner_ms_last = r.compute_ms;
   if (r.compute_ms > counters_.planner_ms_max) counters_.planner_ms_max = r.compute_ms;
   counters_.last_plan_status = r.status;
-  if (r.status != Status::kOk) {
+  // A range-too-long plan is the maximum-drag profile inside the constraints: the shortest
+  // range the vehicle can fly. It is flown (flagged) rather than no plan or a stale one,
+  // both of which would fly further past the aim point and without the constraint bound.
+  const bool best_effort = r.status == Status::kRangeTooLong && r.profile.n_points >= 2;
+  if (r.status != Status::kOk && !best_effort) {
     ++counters_.planner_failures;
     sticky_flags_ |= kHealthPlannerFailed;
     return;
   }
   sticky_flags_ &= ~kHealthPlannerFailed;
+  if (best_effort) sticky_flags_ |= kHealthRangeTooLong;
+  else sticky_flags_ &= ~kHealthRangeTooLong;
   active_ = r.profile;
   active_.seq = next_plan_seq_++;
   has_profile_ = true;

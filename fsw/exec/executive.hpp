@@ -31,6 +31,7 @@ enum HealthFlag : std::int32_t {
   kHealthPlannerFailed = 1 << 3,  // last plan returned a non-ok status (not adopted)
   kHealthNoPlan = 1 << 4,         // no plan adopted yet
   kHealthLinkLoss = 1 << 5,       // set by the process adapter on link loss
+  kHealthRangeTooLong = 1 << 6,   // the active plan is the maximum-drag best effort: TAEM will be overflown
 };
 
 /// The planner, as seen by the executive. Called on the worker thread (or inline in

@@ -28,6 +28,7 @@ class GatedPlanner : public PlanComputer {
   std::atomic<int> calls{0};
   std::atomic<double> last_from_t_s{0.0};
   std::atomic<double> last_from_energy{0.0};
+  std::atomic<int> status{0};  // Status code every plan returns
   Status compute(const RelativeState& from, ReferenceProfile& out) override {
     for (long i = 0; i < 2000000000L && !gate_open.load(std::memory_order_acquire); ++i) {
       std::this_thread::yield();
@@ -40,8 +41,9 @@ class GatedPlanner : public PlanComputer {
     out.energy_Jpkg[1] = 0.0;
     out.drag_mps2[0] = 10.0 + 1e-6 * from.energy_Jpkg;
     out.sigma_rad[0] = 0.5 + 1e-3 * from.t_s;
-    out.status = Status::kOk;
-    return Status::kOk;
+    out.status = static_cast<Status>(status.load());
+    if (out.status != Status::kOk && out.status != Status::kRangeTooLong) out.n_points = 0;
+    return out.status;
   }
 };
 
@@ -266,6 +268,26 @@ TEST(Executive, RejectsInvalidConfiguration) {
   c = base_config(PlanMode::kSynchronous, 1);
   c.gnc_rate_hz = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(exec->init(c, planner, law), Status::kInvalidInput);
+}
+
+TEST(Executive, RangeTooLongPlanIsFlownFlaggedOtherFailuresAreNot) {
+  // A range-too-long plan is the maximum-drag best effort: adopted and flagged. A plan that
+  // failed otherwise (no profile) is counted and not adopted.
+  for (Status st : {Status::kRangeTooLong, Status::kNotConverged}) {
+    GatedPlanner planner;
+    planner.status.store(static_cast<int>(st));
+    EchoLaw law;
+    auto exec = std::make_unique<Executive>();
+    ASSERT_EQ(exec->init(base_config(PlanMode::kSynchronous, 1), planner, law), Status::kOk);
+    CycleOutput out;
+    for (std::int64_t k = 0; k <= 3; ++k) out = exec->step(nav_at(k, 0.1));
+    const bool flown = st == Status::kRangeTooLong;
+    EXPECT_EQ(exec->counters().plans_adopted, flown ? 1 : 0) << to_string(st);
+    EXPECT_EQ(law.profiles_set, flown ? 1 : 0) << to_string(st);
+    EXPECT_EQ((out.health_flags & kHealthRangeTooLong) != 0, flown) << to_string(st);
+    EXPECT_EQ((out.health_flags & kHealthPlannerFailed) != 0, !flown) << to_string(st);
+    EXPECT_EQ(out.phase, flown ? Phase::kTracking : Phase::kInitialDescent) << to_string(st);
+  }
 }
 
 }  // namespace

@@ -14,7 +14,9 @@ namespace {
 constexpr double kMaxAltitude_m = 200000.0;
 constexpr double kDragFloor_mps2 = 1e-4;
 constexpr double kGradedGridDrag_mps2 = 0.1;   // below this initial drag the energy grid is graded
-constexpr double kMaxClosedFraction = 0.1;     // of the grid: a longer corridor closure is a failure
+constexpr double kMaxClosedFraction = 0.1;
+constexpr double kMinLevel_mps2 = 1e-3;   // bracket of the profile level Dc (7.12)
+constexpr double kMaxLevel_mps2 = 500.0;  // far above any corridor maximum: clipped to it     // of the grid: a longer corridor closure is a failure
 constexpr double kDensityStep_m = 25.0;        // finite-difference step for d ln rho / dr
 constexpr int kRootIterations = 80;
 constexpr int kTaemBoxSamples = 60;            // altitude samples of the TAEM band (start-up only)
@@ -238,16 +240,27 @@ void EntryPlanner::breakpoints() {
 // ------------------------------------------------------------------ drag profile
 Status EntryPlanner::fit_profile(double s_m) {
   Status s;
-  if (profile_kind_ == DragProfileKind::kThreeSegment) {
+  level_at_max_ = false;
+  const bool three = profile_kind_ == DragProfileKind::kThreeSegment;
+  if (three) {
     three_ = ThreeSegmentProfile{e0_, diag_.e1_Jpkg, diag_.e2_Jpkg, taem_energy_, diag_.di_mps2, 1.0, diag_.df_mps2};
-    s = three_.solve_constant_drag(s_m, 1e-3, 500.0);   // (7.12)
-    diag_.dc_mps2 = three_.d_c;
+    s = three_.solve_constant_drag(s_m, kMinLevel_mps2, kMaxLevel_mps2);   // (7.12)
   } else {
     smooth_ = SmoothProfile{e0_, taem_energy_, diag_.di_mps2, 1.0, diag_.df_mps2};
-    s = smooth_.solve_level(s_m, 1e-3, 500.0);
-    diag_.dc_mps2 = smooth_.d_c;
+    s = smooth_.solve_level(s_m, kMinLevel_mps2, kMaxLevel_mps2);
   }
-  if (s == Status::kNoBracket) return Status::kCorridorClosed;  // no level reaches the length
+  if (s == Status::kNoBracket) {
+    // Shorter than even the highest level flies: that level, clipped below to the corridor
+    // maximum, is the shortest-range profile (flown as a best effort when the range is too
+    // long for the vehicle, see length_iteration). Otherwise no level reaches the length.
+    if (three) three_.d_c = kMaxLevel_mps2;
+    else smooth_.d_c = kMaxLevel_mps2;
+    const double shortest_m = three ? three_.length_m() : smooth_.length_m();
+    if (!(shortest_m > s_m)) return Status::kCorridorClosed;
+    level_at_max_ = true;
+    s = Status::kOk;
+  }
+  diag_.dc_mps2 = three ? three_.d_c : smooth_.d_c;
   if (s != Status::kOk) return s;
   int clipped = 0;
   for (int k = 0; k < kGrid; ++k) {
@@ -594,6 +607,9 @@ Status EntryPlanner::length_iteration(double range_desired, double& s_m, double&
     diag_.s_final_m = s_m;
     diag_.crossrange_err_m = cross * r_mean_;
     diag_.downrange_err_m = range_desired - range_flown;
+    // The shortest-range (maximum-drag) profile still flies past the aim point: no length
+    // fits. Reported, with this profile kept as the best effort.
+    if (level_at_max_ && range_desired - range_flown < -downrange_tol_m_) return Status::kRangeTooLong;
     if (std::fabs(range_desired - range_flown) < downrange_tol_m_) {
       converged = diag_.reversal_best_effort || std::fabs(diag_.crossrange_err_m) < crossrange_tol_m_;
       break;
@@ -762,13 +778,14 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
     if (s == Status::kOk) s = length_iteration(range_desired, s_m, s_rev, converged);
     if (s != Status::kOk && first != Status::kOk) s = first;  // report the original failure
   }
-  if (s != Status::kOk) return fail(s);
+  const bool too_long = s == Status::kRangeTooLong;
+  if (s != Status::kOk && !too_long) return fail(s);
   Rop end{};
   s = integrate(s_rev, true, end);
   if (s != Status::kOk) return fail(s);
   diag_.reversal_energy_Jpkg = e_rev_;
-  diag_.converged = converged;
-  diag_.status = converged ? Status::kOk : Status::kNotConverged;
+  diag_.converged = converged && !too_long;
+  diag_.status = too_long ? Status::kRangeTooLong : (converged ? Status::kOk : Status::kNotConverged);
   fill_output(out);
   if (converged) ranging_blend_min_ = diag_.ranging_blend;
   return diag_.status;

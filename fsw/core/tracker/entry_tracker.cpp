@@ -142,7 +142,8 @@ Status EntryTracker::init(const config::Mission& mission) {
 }
 
 void EntryTracker::set_profile(const ReferenceProfile& profile) {
-  if (profile.n_points < 2 || profile.status != Status::kOk) return;
+  // A range-too-long plan is the maximum-drag best effort (see the executive): tracked too.
+  if (profile.n_points < 2 || (profile.status != Status::kOk && profile.status != Status::kRangeTooLong)) return;
   profile_ = profile;
   has_profile_ = true;
   hint_ = 0;
