@@ -442,6 +442,46 @@ TEST(Tracker, PullOutGuardStopsADiveThatWouldOvershootTheHeatLimit) {
   EXPECT_GT(std::fabs(out.sigma_rad), 10.0 * M_PI / 180.0);  // below the reference: bank to descend
 }
 
+TEST(Tracker, LoadReliefKeepsTheAlphaCommandWithinTheLoadLimit) {
+  // Sensed aerodynamic acceleration 20 % above the planned fraction of the load limit at the
+  // flown (reference) alpha: the command drops to the alpha whose resultant coefficient is
+  // 1/1.2 of the flown one (independent scan of the table), never more than 15 deg below the
+  // reference. 10 % below the limit: the reference alpha is kept.
+  auto m = mid_profile_tracker(0.7);
+  ASSERT_NE(m, nullptr);
+  OnboardModels models;
+  ASSERT_EQ(models.init(m->mission), Status::kOk);
+  const double limit = 0.97 * m->mission.constraints.load_factor_max_g * 9.80665;
+  RelativeState s = m->state;
+  TrackerOutput out;
+  ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
+  ASSERT_EQ(out.phase, Phase::kTracking);
+  const double alpha_ref = out.alpha_rad;
+  const double mach = models.mach(s.altitude_m, s.velocity_mps);
+  auto c_r = [&](double a) {
+    double cl, cd;
+    models.aero().coefficients(a, mach, cl, cd);
+    return std::hypot(cl, cd);
+  };
+  for (double over : {1.2, 0.9}) {
+    const double lod = s.lift_mps2 / s.drag_mps2;
+    RelativeState loaded_state = s;
+    loaded_state.drag_mps2 = over * limit / std::hypot(1.0, lod);
+    loaded_state.lift_mps2 = loaded_state.drag_mps2 * lod;
+    m->tracker.set_flown_alpha(alpha_ref);
+    ASSERT_EQ(m->tracker.step(loaded_state, 0.1, out), Status::kOk);
+    if (over < 1.0) {
+      EXPECT_NEAR(out.alpha_rad, alpha_ref, 1e-12);
+      continue;
+    }
+    double expected = alpha_ref;  // independent: finest table scan down from the reference
+    while (expected > alpha_ref - 15.0 * M_PI / 180.0 && c_r(expected) > c_r(alpha_ref) / over) expected -= 1e-5;
+    EXPECT_NEAR(out.alpha_rad, expected, 1e-4);
+    EXPECT_LT(out.alpha_rad, alpha_ref - 1.0 * M_PI / 180.0);
+    EXPECT_GE(out.alpha_rad, alpha_ref - 15.0 * M_PI / 180.0 - 1e-9);
+  }
+}
+
 TEST(Tracker, LiftOverDragEstimateConvergesToTheSensedRatio) {
   // Sensed lift 12 % below the table's at the flown alpha: the filtered estimate (20 s time
   // constant) must settle at 0.88 after a few time constants.

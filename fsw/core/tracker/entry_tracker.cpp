@@ -132,6 +132,7 @@ Status EntryTracker::init(const config::Mission& mission) {
   lod_scale_ = 1.0;
   last_alpha_cmd_rad_ = 0.0;
   last_sigma_d_rad_ = 0.0;
+  flown_alpha_rad_ = -1.0;
   final_reversal_done_ = false;
   last_sign_ = 0;
   reversal_until_t_s_ = -1.0;
@@ -240,6 +241,34 @@ EntryTracker::TerminalRange EntryTracker::terminal_range(double energy, double d
 
 bool EntryTracker::modulation_allowed(double drag_ref, double drag_max) const {
   return !(drag_max > 0.0) || drag_ref < kModulationBoundMargin * drag_max * drag_scale_;
+}
+
+double EntryTracker::load_relief_alpha(double alpha_cmd_rad, double alpha_floor_rad, double alpha_flown_rad, double mach,
+                                       double aero_accel_mps2) const {
+  // The aerodynamic acceleration at the sensed dynamic pressure scales with the resultant
+  // coefficient C_R = hypot(C_L, C_D); the command is lowered (bisection, bounded) until the
+  // sensed acceleration scaled to it stays within the planned fraction of the load limit.
+  // Ratios of table coefficients, so a C_L / C_D scale error does not move the limit.
+  double cl, cd;
+  models_.aero().coefficients(alpha_flown_rad, mach, cl, cd);
+  const double c_flown = std::hypot(cl, cd);
+  const double limit = kConstraintMargin * load_factor_max_mps2_;
+  if (!(c_flown > 0.0) || !(aero_accel_mps2 > 0.0) || !(limit > 0.0)) return alpha_cmd_rad;
+  auto accel_at = [&](double alpha) {
+    double l, d;
+    models_.aero().coefficients(alpha, mach, l, d);
+    return aero_accel_mps2 * std::hypot(l, d) / c_flown;
+  };
+  if (accel_at(alpha_cmd_rad) <= limit) return alpha_cmd_rad;
+  // Never below the floor: shedding lift in a dive would deepen it (q then grows without
+  // bound); the floor is the deepest reversal modulation below the reference.
+  double lo = std::fmin(std::fmax(alpha_floor_rad, 0.0), alpha_cmd_rad), hi = alpha_cmd_rad;
+  if (accel_at(lo) > limit) return lo;
+  for (int i = 0; i < 30; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (accel_at(mid) > limit) hi = mid; else lo = mid;
+  }
+  return lo;
 }
 
 double EntryTracker::modulated_alpha(double alpha_rad, double mach, double lift_ratio, double max_rad) const {
@@ -427,6 +456,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
 
   RefPoint ref = reference_at(s.energy_Jpkg);
   out.alpha_rad = clamp(ref.alpha, 0.0, alpha_max_rad_);
+  const double alpha_ref = out.alpha_rad;  // before any reversal modulation or load relief
   update_drag_scale(s, out.alpha_rad, dt_s);
   const double V = s.velocity_mps, D = s.drag_mps2, r = s.radius_m;
   const double g = gravity_mps2(r);
@@ -613,6 +643,16 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     const double max_rad = final_reversal_done_ ? kAlphaModulationMax_rad : kCorridorModulationMax_rad;
     out.alpha_rad = modulated_alpha(out.alpha_rad, models_.mach(s.altitude_m, V),
                                     reversal_lift_ratio(reversal_sigma0_rad_, t_rel), max_rad);
+  }
+
+  // Load relief: the alpha command (a modulation ending at high dynamic pressure raises alpha
+  // by up to 15 deg within seconds) never asks for more than the load-factor limit allows at
+  // the sensed dynamic pressure. Dispersed X-33 runs reached 3.1-3.3 g (limit 3) in the last
+  // seconds, at the end of the final reversal.
+  const double alpha_flown = flown_alpha_rad_ >= 0.0 ? flown_alpha_rad_ : last_alpha_cmd_rad_;
+  if (alpha_flown > 0.0) {
+    out.alpha_rad = load_relief_alpha(out.alpha_rad, alpha_ref - kAlphaModulationMax_rad, alpha_flown,
+                                      models_.mach(s.altitude_m, V), std::hypot(D, s.lift_mps2));
   }
 
   // (3.22) with w = 1: the bank sign comes from the plan or the heading corridor; the heading

@@ -89,6 +89,9 @@ class EntryTracker {
  public:
   Status init(const config::Mission& mission);
   /// Copies the profile (no allocation); resets the integrators when the sequence changes.
+  /// alpha out of the command rate filter last cycle (what the vehicle flies, up to the
+  /// attitude lag); used by the load relief. Not given: the tracker's own last command.
+  void set_flown_alpha(double alpha_rad) { flown_alpha_rad_ = alpha_rad; }
   void set_profile(const ReferenceProfile& profile);
   bool has_profile() const { return has_profile_; }
   Status step(const RelativeState& s, double dt_s, TrackerOutput& out);
@@ -122,6 +125,8 @@ class EntryTracker {
   LateralTarget lateral_target(const RelativeState& s) const;
   bool modulation_allowed(double drag_ref, double drag_max) const;
   double modulated_alpha(double alpha_rad, double mach, double lift_ratio, double max_rad) const;
+  double load_relief_alpha(double alpha_cmd_rad, double alpha_floor_rad, double alpha_flown_rad, double mach,
+                           double aero_accel_mps2) const;
   double reversal_lift_ratio(double sigma0_rad, double t_rel_s) const;
   double reversal_range_extension_m(const RelativeState& s, double alpha_rad, double sigma0_rad) const;
   void update_drag_scale(const RelativeState& s, double alpha_rad, double dt_s);
@@ -161,6 +166,7 @@ class EntryTracker {
   double lod_scale_ = 1.0;          // sensed L/D / model L/D, filtered
   double last_alpha_cmd_rad_ = 0.0; // alpha commanded in the previous cycle
   double last_sigma_d_rad_ = 0.0;   // bank magnitude commanded in the previous cycle
+  double flown_alpha_rad_ = -1.0;   // alpha out of the rate filter (< 0: not given)
   bool final_reversal_done_ = false;
   int last_sign_ = 0;
   double reversal_until_t_s_ = -1.0;
