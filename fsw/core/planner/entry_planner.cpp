@@ -15,6 +15,7 @@ constexpr double kMaxAltitude_m = 200000.0;
 constexpr double kDragFloor_mps2 = 1e-4;
 constexpr double kGradedGridDrag_mps2 = 0.1;   // below this initial drag the energy grid is graded
 constexpr double kMaxClosedFraction = 0.1;
+constexpr double kLateralMoveSpanFraction = 0.9;  // ranging alpha for lateral reach: above this energy only
 constexpr double kMinLevel_mps2 = 1e-3;   // bracket of the profile level Dc (7.12)
 constexpr double kMaxLevel_mps2 = 500.0;  // far above any corridor maximum: clipped to it     // of the grid: a longer corridor closure is a failure
 constexpr double kDensityStep_m = 25.0;        // finite-difference step for d ln rho / dr
@@ -623,10 +624,13 @@ Status EntryPlanner::length_iteration(double range_desired, double& s_m, double&
 bool EntryPlanner::lateral_short() const {
   // No single reversal nulls the crossrange and the best effort leaves more than the
   // tolerance: the bank needed for the range is too small to turn (low L/D, long range).
-  // Judged only in the first half of the energy span: later, a best-effort plan just after a
-  // flown reversal is normal and the lateral corridor steers the rest out.
-  const double half = taem_energy_ + 0.5 * (entry_energy_ - taem_energy_);
-  return from_.energy_Jpkg > half &&
+  // Judged only in the first tenth of the energy span, before the heat pulse: later, a
+  // best-effort plan just after a flown reversal is normal (the lateral corridor steers the
+  // rest out), and moving alpha then swaps a profile on the heat-flux limit for one the
+  // vehicle cannot reach without exceeding it (a dispersed HORUS run at E/E_entry = 0.55:
+  // alpha 43.9 -> 20 deg, 750 kW/m^2, 2181 km long).
+  const double early = taem_energy_ + kLateralMoveSpanFraction * (entry_energy_ - taem_energy_);
+  return from_.energy_Jpkg > early &&
          (lateral_unreachable_ || (diag_.reversal_best_effort && std::fabs(diag_.crossrange_err_m) > crossrange_tol_m_));
 }
 
