@@ -14,10 +14,10 @@ namespace {
 constexpr double kMaxAltitude_m = 200000.0;
 constexpr double kDragFloor_mps2 = 1e-4;
 constexpr double kGradedGridDrag_mps2 = 0.1;   // below this initial drag the energy grid is graded
-constexpr double kMaxClosedFraction = 0.1;
+constexpr double kMaxClosedFraction = 0.1;     // of the grid: a longer corridor closure is a failure
 constexpr double kLateralMoveSpanFraction = 0.9;  // ranging alpha for lateral reach: above this energy only
 constexpr double kMinLevel_mps2 = 1e-3;   // bracket of the profile level Dc (7.12)
-constexpr double kMaxLevel_mps2 = 500.0;  // far above any corridor maximum: clipped to it     // of the grid: a longer corridor closure is a failure
+constexpr double kMaxLevel_mps2 = 500.0;  // far above any corridor maximum: clipped to it
 constexpr double kDensityStep_m = 25.0;        // finite-difference step for d ln rho / dr
 constexpr int kRootIterations = 80;
 constexpr int kTaemBoxSamples = 60;            // altitude samples of the TAEM band (start-up only)
@@ -756,8 +756,9 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
     // The same move is made when no single reversal can null the crossrange early in the
     // flight (lateral_short): at the profile alpha the X-38 needs so little bank for its
     // 9360 km that it cannot turn. Once used, the blend never decreases in later plans, so
-    // the alpha reference stays continuous from plan to plan. (Aiming the blend at a bank margin above the floor was
-    // measured worse: 500 dispersed X-33 runs 61.4 % with 10 deg, 67.8 % with none.)
+    // the alpha reference stays continuous from plan to plan. (Aiming the blend at a bank
+    // margin above the floor was measured worse: 500 dispersed X-33 runs 61.4 % with 10 deg,
+    // 67.8 % with none.)
     alpha_ld_max_on_grid();
     auto feasible = [&](double blend) {
       set_ranging_blend(blend);

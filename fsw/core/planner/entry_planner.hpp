@@ -115,8 +115,8 @@ class EntryPlanner {
   double taem_radius_ = 0.0, taem_velocity_ = 0.0, taem_lat_ = 0.0, taem_lon_ = 0.0;
   double heat_max_ = 0.0, q_alpha_max_ = 0.0, n_max_ = 0.0, q_max_ = 0.0;
   double alpha_max_ = 0.0;
-  bool lateral_unreachable_ = false;
-  bool level_at_max_ = false;  // fit: the length is below the shortest profile's (maximum level)  // reversal search: no bracket, best effort beyond its limit
+  bool lateral_unreachable_ = false;  // reversal search: no bracket, best effort beyond its limit
+  bool level_at_max_ = false;         // fit: the length is below the shortest profile's (maximum level)
   double ranging_blend_min_ = 0.0;  // blend of the last converged plan (never decreases in flight)
   double sigma_rate_max_ = 0.0;
   int rk4_steps_ = 600;

@@ -89,10 +89,10 @@ class EntryTracker {
  public:
   Status init(const config::Mission& mission);
   /// Copies the profile (no allocation); resets the integrators when the sequence changes.
+  void set_profile(const ReferenceProfile& profile);
   /// alpha out of the command rate filter last cycle (what the vehicle flies, up to the
   /// attitude lag); used by the load relief. Not given: the tracker's own last command.
   void set_flown_alpha(double alpha_rad) { flown_alpha_rad_ = alpha_rad; }
-  void set_profile(const ReferenceProfile& profile);
   bool has_profile() const { return has_profile_; }
   Status step(const RelativeState& s, double dt_s, TrackerOutput& out);
 
