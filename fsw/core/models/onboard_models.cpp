@@ -40,6 +40,13 @@ bool strictly_increasing(const double* x, int n) {
 
 double gravity_mps2(double radius_m) { return kMuEarth_m3ps2 / (radius_m * radius_m); }
 
+double level_flight_lift_need_mps2(double radius_m, double horizontal_speed_mps, double latitude_rad,
+                                   double heading_rad) {
+  const double v = horizontal_speed_mps;
+  return gravity_mps2(radius_m) - v * v / radius_m -
+         2.0 * kEarthRate_radps * v * std::cos(latitude_rad) * std::sin(heading_rad);
+}
+
 double specific_energy_Jpkg(double radius_m, double velocity_mps) {
   return 0.5 * velocity_mps * velocity_mps - kMuEarth_m3ps2 / radius_m + kMuEarth_m3ps2 / kEarthRadius_m;  // (7.8)
 }

@@ -24,6 +24,12 @@ inline constexpr double kG0_mps2 = 9.80665;
 /// Central gravity g = mu / r^2.
 double gravity_mps2(double radius_m);
 
+/// Vertical acceleration lift must supply to hold level flight, (2.45) with gamma' = 0:
+/// g - V_h^2 / r - 2 omega V_h cos(lat) sin(chi) (an eastbound vehicle is held up by the
+/// Earth-rate term). V_h: horizontal Earth-relative speed, chi: heading from north.
+double level_flight_lift_need_mps2(double radius_m, double horizontal_speed_mps, double latitude_rad,
+                                   double heading_rad);
+
 /// Specific energy E = V^2/2 - mu/r + mu/R (7.8), R = R_eq.
 double specific_energy_Jpkg(double radius_m, double velocity_mps);
 

@@ -208,8 +208,7 @@ void EntryPlanner::corridor() {
     // heat-flux limit between 7.2 and 5.5 km/s, the true floor below it.
     const double f = span > 0.0 ? (e0_ - e_[k]) / span : 0.0;
     const TrackPoint p = great_circle_point(from_.latitude_rad, from_.longitude_rad, taem_lat_, taem_lon_, f);
-    const double need = g - v * v / r - 2.0 * kEarthRate_radps * v * std::cos(p.lat_rad) * std::sin(p.azimuth_rad);
-    d_floor_[k] = need * cd / cl;
+    d_floor_[k] = level_flight_lift_need_mps2(r, v, p.lat_rad, p.azimuth_rad) * cd / cl;
   }
 }
 
@@ -649,10 +648,7 @@ bool EntryPlanner::below_glide_floor() const {
   for (int k = 0; k < kGrid && e_[k] > e_terminal; ++k) {
     const double f = s_end > 0.0 ? s_cum_[k] / s_end : 0.0;  // planned range fraction
     const TrackPoint p = great_circle_point(from_.latitude_rad, from_.longitude_rad, taem_lat_, taem_lon_, f);
-    const double lat = p.lat_rad, chi = p.azimuth_rad;
-    const double v = v_[k], r = r_[k];
-    const double need = gravity_mps2(r) - v * v / r - 2.0 * kEarthRate_radps * v * std::cos(lat) * std::sin(chi);
-    const double floor = need / lod_[k];
+    const double floor = level_flight_lift_need_mps2(r_[k], v_[k], p.lat_rad, p.azimuth_rad) / lod_[k];
     if (!entered) entered = d_[k] >= floor || e_[k] < e0_ - kCaptureSpanFraction * span;
     if (entered && d_[k] < floor) return true;
   }

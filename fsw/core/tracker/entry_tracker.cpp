@@ -372,9 +372,8 @@ double EntryTracker::lift_up_pullout_drag_mps2(const RelativeState& s, double si
   if (!(dlnrho_dr < 0.0)) return D;
   // Net downward acceleration without lift, with the Earth-rate term of (2.45) (an eastbound
   // vehicle near orbital speed is held up by it).
-  const double v_h = s.velocity_mps * std::cos(s.flight_path_rad);
-  const double g_eff = gravity_mps2(s.radius_m) - v_h * v_h / s.radius_m -
-                       2.0 * kEarthRate_radps * v_h * std::cos(s.latitude_rad) * std::sin(s.heading_rad);
+  const double g_eff = level_flight_lift_need_mps2(s.radius_m, s.velocity_mps * std::cos(s.flight_path_rad),
+                                                   s.latitude_rad, s.heading_rad);
   const double sigma = std::fabs(sigma_now_rad);
   const double t_roll = sigma_rate_max_radps_ > 0.0 && sigma > 1e-6 ? sigma / sigma_rate_max_radps_ + kRollLag_s : 0.0;
   return pullout_drag_after_roll_mps2(D, s.lift_mps2 / D, s.velocity_mps * std::sin(s.flight_path_rad), g_eff,
