@@ -595,6 +595,7 @@ Status EntryPlanner::length_iteration(double range_desired, double& s_m, double&
   // Trajectory-length iteration (7.22): fit, extract, reversal search, correct the length.
   double cross = 0.0, down = 0.0;
   converged = false;
+  lateral_unreachable_ = false;  // set by reversal_search, read by lateral_short()
   for (int it = 0; it < max_iterations_; ++it) {
     diag_.iterations = it + 1;
     Status s = fit_profile(s_m);
@@ -739,7 +740,6 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   if (s != Status::kOk) return fail(s);
   double s_rev = 0.0;
   bool converged = false;
-  lateral_unreachable_ = false;
   s = length_iteration(range_desired, s_m, s_rev, converged);
   const Status first = s;
   const bool lateral = lateral_short();
@@ -760,7 +760,6 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
       set_ranging_blend(blend);
       double s_trial = range_desired;
       bool conv_trial = false;
-      lateral_unreachable_ = false;
       if (prepare_corridor(d_actual) != Status::kOk) return false;
       return length_iteration(range_desired, s_trial, s_rev, conv_trial) == Status::kOk && !below_glide_floor() &&
              !lateral_short();
@@ -773,7 +772,6 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
       else lo = mid;
     }
     set_ranging_blend(hi);
-    lateral_unreachable_ = false;
     s_m = range_desired;
     s = prepare_corridor(d_actual);
     if (s == Status::kOk) s = length_iteration(range_desired, s_m, s_rev, converged);
