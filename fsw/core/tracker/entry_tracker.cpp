@@ -464,6 +464,9 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   const bool lateral_corridor = e_norm < lateral_e_norm_;
   // Aim-point geometry, once per cycle, for the terminal range control and the corridor.
   const LateralTarget target = (terminal || lateral_corridor) ? lateral_target(s) : LateralTarget{};
+  // The plan's path-constraint bound on the drag, times the sensed drag ratio K when below 1
+  // (a density error does not move a q-type bound): terminal increment and pull-out guard.
+  const double plan_bound = ref.drag_max > 0.0 ? ref.drag_max * std::fmin(drag_scale_, 1.0) : 1e300;
   if (terminal) {
     // Terminal range control (drag reference update, as the Shuttle's): the range the plan
     // still flies from here, S = -int dE / D_ref (C.2), is matched to the great-circle
@@ -493,10 +496,8 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
       c = clamp((range_to_aim_m - tr.range_m - extra_m) / tr.sensitivity, -c_max, c_max);
     }
     const double d0 = ref.drag, d0p = ref.drag_prime;
-    // The increment never takes the reference past the plan's path-constraint bound (times
-    // the sensed drag ratio K when below 1: a density error does not move a q-type bound).
-    const double d_bound = ref.drag_max > 0.0 ? ref.drag_max * std::fmin(drag_scale_, 1.0) : 1e300;
-    if (d0 * k_f + c * w_here > d_bound && w_here > 0.0) c = (d_bound - d0 * k_f) / w_here;
+    // The increment never takes the reference past the plan's path-constraint bound.
+    if (d0 * k_f + c * w_here > plan_bound && w_here > 0.0) c = (plan_bound - d0 * k_f) / w_here;
     ref.drag = d0 * k_f + c * w_here;
     ref.drag_prime = d0p * k_f + (c - (drag_scale_ - 1.0) * d0) * dw_dE;
     ref.drag_second = ref.drag_second * k_f - 2.0 * (drag_scale_ - 1.0) * d0p * dw_dE +
@@ -555,8 +556,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     // alone follows the planned drag ramp after capture with lift down and reaches the
     // plateau in a dive it can no longer arrest (HORUS: drag 5 against 2.7, heat flux 700
     // kW/m^2 against 530). Later, on the plateau, small descents are the drag loop's own.
-    const double d_guard = std::fmin(constraint_drag_limit_mps2(s, out.alpha_rad, cd),
-                                     ref.drag_max > 0.0 ? ref.drag_max * std::fmin(drag_scale_, 1.0) : 1e300);
+    const double d_guard = std::fmin(constraint_drag_limit_mps2(s, out.alpha_rad, cd), plan_bound);
     if (lift_up_pullout_drag_mps2(s, last_sigma_d_rad_) > d_guard) u_drag = lod;
   }
   u_drag = clamp(u_drag, -lod, lod);
