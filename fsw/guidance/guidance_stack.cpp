@@ -6,7 +6,7 @@
 namespace reentry::fsw {
 
 Status TrackerLaw::step(const RelativeState& s, double dt_s, bool /*has_profile*/, exec::LawOutput& out) {
-  if (started_) tracker.set_flown_alpha(alpha_filter.value());
+  if (started_) tracker.set_flown_attitude(alpha_filter.value(), sigma_filter.value());
   const Status st = tracker.step(s, dt_s, last);
   if (st != Status::kOk) return st;
   if (!started_) {

@@ -468,7 +468,7 @@ TEST(Tracker, LoadReliefKeepsTheAlphaCommandWithinTheLoadLimit) {
     RelativeState loaded_state = s;
     loaded_state.drag_mps2 = over * limit / std::hypot(1.0, lod);
     loaded_state.lift_mps2 = loaded_state.drag_mps2 * lod;
-    m->tracker.set_flown_alpha(alpha_ref);
+    m->tracker.set_flown_attitude(alpha_ref, 0.0);
     ASSERT_EQ(m->tracker.step(loaded_state, 0.1, out), Status::kOk);
     if (over < 1.0) {
       EXPECT_NEAR(out.alpha_rad, alpha_ref, 1e-12);
@@ -479,6 +479,94 @@ TEST(Tracker, LoadReliefKeepsTheAlphaCommandWithinTheLoadLimit) {
     EXPECT_NEAR(out.alpha_rad, expected, 1e-4);
     EXPECT_LT(out.alpha_rad, alpha_ref - 1.0 * M_PI / 180.0);
     EXPECT_GE(out.alpha_rad, alpha_ref - 15.0 * M_PI / 180.0 - 1e-9);
+  }
+}
+
+TEST(Tracker, DragLoopSeesTheDensityNotTheAlphaChannel) {
+  // The same air (same q) flown 10 deg below the reference alpha: the sensed drag and lift
+  // are the table's C_D and C_L ratios times the reference-alpha ones (computed here from the
+  // table). The drag loop must see the same drag error and command the same bank as at the
+  // reference alpha: a drag change made by the alpha channel is not an altitude error.
+  OnboardModels models;
+  auto a = mid_profile_tracker(0.7);
+  auto b = mid_profile_tracker(0.7);
+  ASSERT_NE(a, nullptr);
+  ASSERT_NE(b, nullptr);
+  ASSERT_EQ(models.init(a->mission), Status::kOk);
+  RelativeState s = a->state;
+  s.drag_mps2 *= 1.05;  // 5 % above the reference: a drag error to see
+  s.lift_mps2 *= 1.05;
+  TrackerOutput out_a, out_b;
+  ASSERT_EQ(a->tracker.step(s, 0.1, out_a), Status::kOk);
+  ASSERT_EQ(b->tracker.step(s, 0.1, out_b), Status::kOk);
+  ASSERT_EQ(out_a.phase, Phase::kTracking);
+  const double alpha_ref = out_a.alpha_rad;
+  const double alpha_low = alpha_ref - 10.0 * M_PI / 180.0;
+  const double mach = models.mach(s.altitude_m, s.velocity_mps);
+  double cl_ref, cd_ref, cl_low, cd_low;
+  models.aero().coefficients(alpha_ref, mach, cl_ref, cd_ref);
+  models.aero().coefficients(alpha_low, mach, cl_low, cd_low);
+  ASSERT_LT(cd_low, 0.9 * cd_ref);  // the modulation changes the drag by more than the error
+  RelativeState s_low = s;
+  s_low.t_s += 0.1;
+  s_low.drag_mps2 = s.drag_mps2 * cd_low / cd_ref;
+  s_low.lift_mps2 = s.lift_mps2 * cl_low / cl_ref;
+  RelativeState s_ref = s;
+  s_ref.t_s += 0.1;
+  a->tracker.set_flown_attitude(alpha_ref, out_a.sigma_rad);
+  b->tracker.set_flown_attitude(alpha_low, out_b.sigma_rad);
+  ASSERT_EQ(a->tracker.step(s_ref, 0.1, out_a), Status::kOk);
+  ASSERT_EQ(b->tracker.step(s_low, 0.1, out_b), Status::kOk);
+  EXPECT_GT(out_a.drag_err_mps2, 0.0);
+  EXPECT_NEAR(out_b.drag_err_mps2, out_a.drag_err_mps2, 1e-9 * s.drag_mps2);
+  EXPECT_NEAR(out_b.drag_ref_mps2, out_a.drag_ref_mps2, 1e-9 * s.drag_mps2);
+  // Same bank up to the energy-rate scaling of the gains (E' = -D V with the drag flown).
+  EXPECT_NEAR(out_b.sigma_rad, out_a.sigma_rad, 2.0 * M_PI / 180.0);
+  // Taken raw, the error would have the opposite sign (the vehicle would be told it is high).
+  EXPECT_LT(s_low.drag_mps2 - out_a.drag_ref_mps2, -0.05 * out_a.drag_ref_mps2);
+}
+
+TEST(Tracker, ReversalModulationNeverRemovesLiftTheDragLoopAsksFor) {
+  // A corridor reversal forced by a heading error past the corridor edge, the drag loop asking
+  // for a bank of about 60 deg. The flown bank lags at 85 deg (its vertical lift is below the
+  // loop's demand): alpha stays at the reference. The flown bank is at 20 deg (more vertical
+  // lift than asked for): alpha is lowered so that C_L(alpha) / C_L(alpha_ref) =
+  // cos(sigma0) / cos(sigma0 - sigma_rate 1 s), the roll led by 1 s, within the corridor
+  // modulation depth of 6 deg (both checked on the table here).
+  OnboardModels models;
+  for (double flown_deg : {85.0, 20.0}) {
+    auto m = mid_profile_tracker(0.9);
+    ASSERT_NE(m, nullptr);
+    ASSERT_EQ(models.init(m->mission), Status::kOk);
+    RelativeState s = m->state;
+    s.drag_mps2 *= 1.3;  // below the reference: banked less than 90 deg
+    s.lift_mps2 *= 1.3;
+    TrackerOutput out;
+    ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
+    ASSERT_EQ(out.phase, Phase::kTracking);
+    ASSERT_LT(std::fabs(out.sigma_rad), 80.0 * M_PI / 180.0);
+    const double alpha_ref = out.alpha_rad;
+    const double sign = out.sigma_rad >= 0.0 ? 1.0 : -1.0;
+    // Heading past the corridor edge on the side the present bank turns towards.
+    s.heading_rad += sign * 20.0 * M_PI / 180.0;
+    s.t_s += 0.1;
+    m->tracker.set_flown_attitude(alpha_ref, sign * flown_deg * M_PI / 180.0);
+    ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
+    ASSERT_EQ(out.phase, Phase::kReversal);
+    ASSERT_LT(out.sigma_rad * sign, 0.0);
+    if (flown_deg > 80.0) {
+      EXPECT_NEAR(out.alpha_rad, alpha_ref, 1e-12);
+      continue;
+    }
+    const double mach = models.mach(s.altitude_m, s.velocity_mps);
+    const double sigma0 = out.sigma_d_rad;
+    const double sigma_lead = std::fabs(sigma0 - m->mission.constraints.sigma_rate_max_radps * 1.0);
+    const double ratio = std::max(0.3, std::cos(sigma0) / std::cos(sigma_lead));
+    const double floor = alpha_ref - 6.0 * M_PI / 180.0;
+    double expected = alpha_ref;  // independent: finest table scan down from the reference
+    while (expected > floor && models.aero().cl(expected, mach) > ratio * models.aero().cl(alpha_ref, mach)) expected -= 1e-5;
+    EXPECT_LT(out.alpha_rad, alpha_ref - 0.5 * M_PI / 180.0);
+    EXPECT_NEAR(out.alpha_rad, std::max(expected, floor), 2e-4);
   }
 }
 

@@ -47,6 +47,7 @@ constexpr double kAlphaModulationMax_rad = 15.0 * M_PI / 180.0;
 constexpr double kCorridorModulationMax_rad = 6.0 * M_PI / 180.0;  // before the final reversal
 constexpr double kMinLiftRatio = 0.3;
 constexpr double kAlphaModulationLead_s = 1.0;
+constexpr double kMeanBankTimeConstant_s = 10.0;  // bank averaging for the final-reversal timing
 constexpr double kModulationBoundMargin = 0.85;
 constexpr double kDegree_rad = M_PI / 180.0;
 // Sensed drag-to-model ratio: first-order filter, bounded.
@@ -133,6 +134,8 @@ Status EntryTracker::init(const config::Mission& mission) {
   last_alpha_cmd_rad_ = 0.0;
   last_sigma_d_rad_ = 0.0;
   flown_alpha_rad_ = -1.0;
+  has_flown_sigma_ = false;
+  mean_sigma_d_rad_ = -1.0;
   final_reversal_done_ = false;
   last_sign_ = 0;
   reversal_until_t_s_ = -1.0;
@@ -315,6 +318,17 @@ double EntryTracker::reversal_range_extension_m(const RelativeState& s, double a
   return extension;
 }
 
+RelativeState EntryTracker::referred_to_alpha(const RelativeState& s, double alpha_flown_rad, double alpha_rad) const {
+  RelativeState out = s;
+  double cl, cd, cl_flown, cd_flown;
+  const double mach = models_.mach(s.altitude_m, s.velocity_mps);
+  models_.aero().coefficients(alpha_rad, mach, cl, cd);
+  models_.aero().coefficients(alpha_flown_rad, mach, cl_flown, cd_flown);
+  if (cd > 0.0 && cd_flown > 0.0) out.drag_mps2 = s.drag_mps2 * cd / cd_flown;
+  if (cl > 0.0 && cl_flown > 0.0) out.lift_mps2 = s.lift_mps2 * cl / cl_flown;
+  return out;
+}
+
 void EntryTracker::update_drag_scale(const RelativeState& s, double alpha_rad, double dt_s) {
   // Ratio of the sensed drag to the on-board model's drag at the navigated height and speed:
   // the product of the density, drag-coefficient and mass errors (and wind), low-pass filtered.
@@ -431,8 +445,11 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   const double e_norm = s.energy_Jpkg / entry_energy_Jpkg_;
   out = TrackerOutput{};
   out.alpha_rad = clamp(alpha_profile_.alpha_rad(e_norm), 0.0, alpha_max_rad_);
-  // The L/D estimate uses the alpha commanded last cycle (flown now, up to the rate filter).
-  update_lod_scale(s, last_alpha_cmd_rad_ > 0.0 ? last_alpha_cmd_rad_ : out.alpha_rad, dt_s);
+  // The sensed accelerations belong to the alpha flown now: the rate filter's output when the
+  // stack provides it, else the alpha commanded last cycle, else the profile's.
+  const double alpha_flown =
+      flown_alpha_rad_ >= 0.0 ? flown_alpha_rad_ : (last_alpha_cmd_rad_ > 0.0 ? last_alpha_cmd_rad_ : out.alpha_rad);
+  update_lod_scale(s, alpha_flown, dt_s);
   out.lift_over_drag_scale = lod_scale_;
   if (!captured_ && has_profile_ && s.drag_mps2 >= kSkipCaptureDragFraction * initial_descent_drag_mps2_) {
     // Capture once the drag is measurable and a wings-level pull-out would level off below
@@ -456,8 +473,16 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   RefPoint ref = reference_at(s.energy_Jpkg);
   out.alpha_rad = clamp(ref.alpha, 0.0, alpha_max_rad_);
   const double alpha_ref = out.alpha_rad;  // before any reversal modulation or load relief
-  update_drag_scale(s, out.alpha_rad, dt_s);
+  update_drag_scale(s, alpha_flown, dt_s);
   const double V = s.velocity_mps, D = s.drag_mps2, r = s.radius_m;
+  // The sensed state referred to the reference alpha: drag and lift scaled by the table's C_D
+  // and C_L ratios between the reference and the flown alpha. The drag loop controls the
+  // density (altitude); a drag change made by the alpha channel (reversal modulation, load
+  // relief) is not an altitude error. Fed the raw drag, the loop answered a 15 deg modulation
+  // (C_D about -40 %) with lift down, and dispersed X-33 runs left the final reversal 2-3 km
+  // low and diving (q 15.4 kPa against 14.4).
+  const RelativeState s_ref_alpha = referred_to_alpha(s, alpha_flown, out.alpha_rad);
+  const double D_ref_alpha = s_ref_alpha.drag_mps2;
   const double g = gravity_mps2(r);
   const double slat = std::sin(s.latitude_rad), clat = std::cos(s.latitude_rad);
   const bool terminal = e_norm < terminal_e_norm_;
@@ -505,14 +530,18 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   }
   // Constraint protection: the reference never asks for more drag than the sensed state
   // allows within the planned constraint fraction (the planner's bound is on the model
-  // atmosphere; tracking lag and reversal transients must not eat the margin).
+  // atmosphere; tracking lag and reversal transients must not eat the margin). The limits hold
+  // at the flown alpha (true q, q alpha and load factor) and are referred to the reference alpha.
   const double cd = models_.drag_coefficient(out.alpha_rad, s.energy_Jpkg, s.altitude_m);
-  ref.drag = std::fmin(ref.drag, constraint_drag_limit_mps2(s, out.alpha_rad, cd));
+  const double cd_flown = models_.drag_coefficient(alpha_flown, s.energy_Jpkg, s.altitude_m);
+  const double constraint_limit =
+      constraint_drag_limit_mps2(s, alpha_flown, cd_flown) * D_ref_alpha / std::fmax(D, kMinDrag_mps2);
+  ref.drag = std::fmin(ref.drag, constraint_limit);
   const double sg = std::sin(s.flight_path_rad), cg = std::cos(s.flight_path_rad);
   const double V2 = V * V;
   // Sensed L/D where it is measurable, else the planned one (a lift-less or drag-less
   // measurement must not turn into a 0/0 bank command).
-  const double lod_sensed = D > kMinDrag_mps2 ? s.lift_mps2 / D : 0.0;
+  const double lod_sensed = D_ref_alpha > kMinDrag_mps2 ? s_ref_alpha.lift_mps2 / D_ref_alpha : 0.0;
   const double lod = lod_sensed >= kMinLiftOverDrag ? lod_sensed : ref.lod;
   if (!(lod >= kMinLiftOverDrag)) return Status::kInvalidInput;
 
@@ -525,19 +554,19 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
                                                          ref.alpha - ref.alpha_prime * de, e_b, s.altitude_m);
   const double cd_ratio = cd > 0.0 ? cd_slope / cd : 0.0;
   const double density_term = -dlnrho_dr + 2.0 * g / V2;
-  const double drag_prime = D * (2.0 / V2 + cd_ratio) + density_term * sg;   // (7.14)
+  const double drag_prime = D_ref_alpha * (2.0 / V2 + cd_ratio) + density_term * sg;  // (7.14)
   double b = -density_term / V2;                                             // (7.20)
   if (!(std::fabs(b) > 0.0)) b = ref.b;
 
   // Dynamic pressure from the sensed drag and the model C_D; scheduled omega (3.13).
-  const double q = cd > 0.0 ? D / (cd * models_.area_over_mass()) : ref.q;
+  const double q = cd > 0.0 ? D_ref_alpha / (cd * models_.area_over_mass()) : ref.q;
   const double omega_t = scheduled_omega(gains_.omega0_radps, q, q_ref_Pa_);
 
   // Time -> energy conversion (3.14)-(3.18), E' = -D V.
   const double e_dot = -D * V;
   const double e_ddot = drag_prime * D * V2 + D * D + D * g * sg;            // (3.18)
   double d2_cmd = ref.drag_second;
-  const double err = D - ref.drag, err_prime = drag_prime - ref.drag_prime;
+  const double err = D_ref_alpha - ref.drag, err_prime = drag_prime - ref.drag_prime;
   const bool reversing = s.t_s < reversal_until_t_s_;
   if (std::fabs(e_dot) > 1e-9) {
     const double inv_edot2 = 1.0 / (e_dot * e_dot);
@@ -556,7 +585,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     // alone follows the planned drag ramp after capture with lift down and reaches the
     // plateau in a dive it can no longer arrest (HORUS: drag 5 against 2.7, heat flux 700
     // kW/m^2 against 530). Later, on the plateau, small descents are the drag loop's own.
-    const double d_guard = std::fmin(constraint_drag_limit_mps2(s, out.alpha_rad, cd), plan_bound);
+    const double d_guard = std::fmin(constraint_limit, plan_bound);
     if (lift_up_pullout_drag_mps2(s, last_sigma_d_rad_) > d_guard) u_drag = lod;
   }
   u_drag = clamp(u_drag, -lod, lod);
@@ -590,6 +619,15 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   // loop at the maximum bank rate, t_rev = 2 |sigma| / sigma_rate_max long.
   int sign_ref = ref.sigma >= 0.0 ? 1 : -1;
   const double t_rev_s = 2.0 * sigma_d / sigma_rate_max_radps_;
+  // Bank magnitude averaged over kMeanBankTimeConstant_s: the final-reversal window and the
+  // heading turned until TAEM depend on the bank flown over the remaining flight, not on the
+  // present command, which swings by tens of degrees after a reversal (a reversal started on
+  // a transient 84 deg bank was timed for a 34 s roll and turned back a corridor reversal
+  // made 18 s earlier).
+  mean_sigma_d_rad_ = mean_sigma_d_rad_ < 0.0 ? sigma_d
+                                              : mean_sigma_d_rad_ + clamp(dt_s / kMeanBankTimeConstant_s, 0.0, 1.0) *
+                                                                        (sigma_d - mean_sigma_d_rad_);
+  const double t_rev_mean_s = 2.0 * mean_sigma_d_rad_ / sigma_rate_max_radps_;
   if (lateral_corridor && last_sign_ != 0) {
     const double err_to_target = wrap_pi(chi - target.heading_rad);
     const double e_taem_norm = taem_energy_Jpkg_ / entry_energy_Jpkg_;
@@ -597,7 +635,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     const double corridor = kCorridorMin_rad + (kCorridorMax_rad - kCorridorMin_rad) * x;
     const double t_go_s = (s.energy_Jpkg - taem_energy_Jpkg_) / std::fmax(D * V, 1e-6);  // E' = -D V
     sign_ref = last_sign_;
-    if (t_go_s < kFinalReversalWindow * t_rev_s) {
+    if (t_go_s < kFinalReversalWindow * t_rev_mean_s) {
       // Final reversal timing: the turn rate w = L sin|sigma| / (V cos gamma) grows as 1/V
       // while V falls (about linearly in time) to the TAEM speed, so the heading turned over
       // [t1, t2] is W(t1, t2) = w V t_go / (V - V_f) ln(V(t1) / V(t2)). A symmetric reversal
@@ -605,13 +643,13 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
       // reversal starts when the heading error at TAEM it leads to reaches zero, so that the
       // vehicle arrives on the target heading (a corridor reversal this late would leave it
       // mid-swing).
-      const double turn_rate = s.lift_mps2 * std::sin(sigma_d) / (V * cg);
+      const double turn_rate = s.lift_mps2 * std::sin(mean_sigma_d_rad_) / (V * cg);
       const double v_f = std::fmin(taem_velocity_mps_, 0.99 * V);
       auto speed_at = [&](double t) { return V - (V - v_f) * clamp(t / t_go_s, 0.0, 1.0); };
       auto turned = [&](double t1, double t2) {
         return turn_rate * V * t_go_s / (V - v_f) * std::log(speed_at(t1) / speed_at(t2));
       };
-      const double half_rev_s = std::fmin(0.5 * t_rev_s, t_go_s);
+      const double half_rev_s = std::fmin(0.5 * t_rev_mean_s, t_go_s);
       if (!reversing && !final_reversal_done_ &&
           last_sign_ * err_to_target + turned(0.0, half_rev_s) - turned(half_rev_s, t_go_s) >= 0.0) {
         sign_ref = -last_sign_;
@@ -629,7 +667,19 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     reversal_sigma0_rad_ = sigma_d;
   }
   last_sign_ = sign_ref;
-  if (modulation_allowed(ref.drag, ref.drag_max) && s.t_s < reversal_until_t_s_ && reversal_start_t_s_ >= 0.0) {
+  // Bank flown now (the rate filter's output, else the tracker's own last command), carried
+  // towards the command at the maximum rate for the alpha lag.
+  const double sigma_flown = has_flown_sigma_ ? flown_sigma_rad_ : last_sign_ * last_sigma_d_rad_;
+  const double max_roll_rad = sigma_rate_max_radps_ * kAlphaModulationLead_s;
+  const double cos_lead =
+      std::cos(sigma_flown + clamp(sign_ref * sigma_d - sigma_flown, -max_roll_rad, max_roll_rad));
+  // The modulation removes vertical lift the drag loop has not asked for: only while the
+  // rolling bank gives more than the loop's demand u_drag / (L/D). An open-loop modulation
+  // after a reversal from 101 deg (cos(sigma0) < 0: 30 % lift) held alpha 12 deg low for 40 s
+  // in a dive that the loop was asking to arrest.
+  const bool lift_unwanted = cos_lead > 0.0 && cos_lead > u_drag / lod;
+  if (modulation_allowed(ref.drag, ref.drag_max) && s.t_s < reversal_until_t_s_ && reversal_start_t_s_ >= 0.0 &&
+      lift_unwanted) {
     // Angle-of-attack modulation in a reversal: rolling through wings level at the maximum
     // rate raises the vertical lift from L cos(sigma0) to L; lowering alpha so that
     // C_L(alpha + d_alpha) = C_L(alpha) cos(sigma0) / cos(sigma(t)) keeps the vertical lift,
@@ -648,7 +698,6 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   // by up to 15 deg within seconds) never asks for more than the load-factor limit allows at
   // the sensed dynamic pressure. Dispersed X-33 runs reached 3.1-3.3 g (limit 3) in the last
   // seconds, at the end of the final reversal.
-  const double alpha_flown = flown_alpha_rad_ >= 0.0 ? flown_alpha_rad_ : last_alpha_cmd_rad_;
   if (alpha_flown > 0.0) {
     out.alpha_rad = load_relief_alpha(out.alpha_rad, alpha_ref - kAlphaModulationMax_rad, alpha_flown,
                                       models_.mach(s.altitude_m, V), std::hypot(D, s.lift_mps2));

@@ -90,9 +90,15 @@ class EntryTracker {
   Status init(const config::Mission& mission);
   /// Copies the profile (no allocation); resets the integrators when the sequence changes.
   void set_profile(const ReferenceProfile& profile);
-  /// alpha out of the command rate filter last cycle (what the vehicle flies, up to the
-  /// attitude lag); used by the load relief. Not given: the tracker's own last command.
-  void set_flown_alpha(double alpha_rad) { flown_alpha_rad_ = alpha_rad; }
+  /// alpha and bank out of the command rate filters last cycle (what the vehicle flies, up to
+  /// the attitude lag): the sensed accelerations are referred to the reference alpha with
+  /// them, and the reversal modulation and the load relief act on them. Not given: the
+  /// tracker's own last commands.
+  void set_flown_attitude(double alpha_rad, double sigma_rad) {
+    flown_alpha_rad_ = alpha_rad;
+    flown_sigma_rad_ = sigma_rad;
+    has_flown_sigma_ = true;
+  }
   bool has_profile() const { return has_profile_; }
   Status step(const RelativeState& s, double dt_s, TrackerOutput& out);
 
@@ -133,6 +139,8 @@ class EntryTracker {
   void update_lod_scale(const RelativeState& s, double alpha_rad, double dt_s);
   double lift_up_pullout_drag_mps2(const RelativeState& s, double sigma_now_rad = 0.0) const;
   double constraint_drag_limit_mps2(const RelativeState& s, double alpha_rad, double cd) const;
+  /// The sensed drag and lift as they would be at alpha_rad (table C_D, C_L ratios to the flown alpha).
+  RelativeState referred_to_alpha(const RelativeState& s, double alpha_flown_rad, double alpha_rad) const;
 
   OnboardModels models_;
   AlphaProfile alpha_profile_;
@@ -167,6 +175,9 @@ class EntryTracker {
   double last_alpha_cmd_rad_ = 0.0; // alpha commanded in the previous cycle
   double last_sigma_d_rad_ = 0.0;   // bank magnitude commanded in the previous cycle
   double flown_alpha_rad_ = -1.0;   // alpha out of the rate filter (< 0: not given)
+  double flown_sigma_rad_ = 0.0;    // bank out of the rate filter
+  bool has_flown_sigma_ = false;
+  double mean_sigma_d_rad_ = -1.0;  // bank magnitude averaged for the final reversal (< 0: unset)
   bool final_reversal_done_ = false;
   int last_sign_ = 0;
   double reversal_until_t_s_ = -1.0;
