@@ -570,6 +570,43 @@ TEST(Tracker, ReversalModulationNeverRemovesLiftTheDragLoopAsksFor) {
   }
 }
 
+TEST(Tracker, FinalDragTakesOnlyThePartOfTheDragRatioTheTaemBandsNeed) {
+  // altitude band +-1.8 km, no Mach band. The sensed drag is K times the on-board
+  // model's for 300 s (20 s filter). Flying k times the planned final drag meets the TAEM
+  // energy H ln(K / k) above the planned altitude, so the band holds for k in
+  // [K exp(-hi / H), K exp(-lo / H)], lo/hi the band edges relative to the planned altitude;
+  // the factor is the value closest to 1 there (closed form here), found by a 20-step scan.
+  constexpr double kH_m = 7050.0;
+  for (double K : {1.1, 1.5, 0.7}) {
+    auto m = mid_profile_tracker(0.7);
+    ASSERT_NE(m, nullptr);
+    OnboardModels models;
+    ASSERT_EQ(models.init(m->mission), Status::kOk);
+    TrackerOutput out;
+    RelativeState s = m->state;
+    ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
+    for (int i = 0; i < 3000; ++i) {
+      s.drag_mps2 = K * models.drag_mps2(out.alpha_rad, s.altitude_m, s.velocity_mps);
+      s.t_s += 0.1;
+      ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
+    }
+    const auto& p = *m->profile;
+    const double h_plan = p.radius_m[p.n_points - 1] - kEarthRadius_m;
+    const double lo = m->mission.taem.altitude_m - m->mission.taem.altitude_tol_m - h_plan;
+    const double hi = m->mission.taem.altitude_m + m->mission.taem.altitude_tol_m - h_plan;
+    const double k_exact = std::clamp(1.0, K * std::exp(-hi / kH_m), K * std::exp(-lo / kH_m));
+    const double k = m->tracker.final_drag_factor();
+    if (kH_m * std::fabs(std::log(K)) < m->mission.taem.altitude_tol_m) {  // fits in the band: k = 1
+      EXPECT_DOUBLE_EQ(k, 1.0);
+      EXPECT_DOUBLE_EQ(k_exact, 1.0);
+      continue;
+    }
+    EXPECT_NE(k, 1.0);
+    EXPECT_NEAR(k, k_exact, std::fabs(K - 1.0) / 20.0 + 1e-3);
+    EXPECT_GE(std::fabs(k - 1.0), std::fabs(k_exact - 1.0) - 1e-3);  // never outside the band
+  }
+}
+
 TEST(Tracker, LiftOverDragEstimateConvergesToTheSensedRatio) {
   // Sensed lift 12 % below the table's at the flown alpha: the filtered estimate (20 s time
   // constant) must settle at 0.88 after a few time constants.

@@ -21,9 +21,10 @@
 //                        for the drag this costs in the final reversal;
 //   terminal range       over the last 25 % of the energy span the drag reference gets a
 //                        range-to-go increment (quadratic in energy) vanishing at TAEM, and the
-//                        final drag is scaled by the sensed drag-to-model ratio, so that the
-//                        aim point is reached at the TAEM altitude in the true atmosphere;
-//                        the increment stays within the plan's path-constraint bound.
+//                        final drag takes as much of the sensed drag-to-model ratio as keeps
+//                        the TAEM state inside its altitude and Mach bands (the rest of the
+//                        ratio moves the TAEM altitude); the increment stays within the plan's
+//                        path-constraint bound.
 // Before the first plan, and until the sensed drag passes the initial-descent threshold,
 // the tracker holds the profile alpha and wings level (flight practice, DESIGN §6).
 // Gains are derived from vehicle-independent physics (see derive_gains) unless the mission
@@ -100,6 +101,9 @@ class EntryTracker {
     has_flown_sigma_ = true;
   }
   bool has_profile() const { return has_profile_; }
+  /// Factor on the planned final drag in the terminal phase: the part of the sensed
+  /// drag-to-model ratio K that keeps the TAEM state inside its altitude and Mach bands.
+  double final_drag_factor() const;
   Status step(const RelativeState& s, double dt_s, TrackerOutput& out);
 
   const TrackerGains& gains() const { return gains_; }
@@ -120,7 +124,10 @@ class EntryTracker {
     double range_m = -1.0;     // range to the end of the profile (C.2); < 0: undefined
     double sensitivity = 0.0;  // d range / d c of the terminal drag increment [m per m/s^2]
   };
-  TerminalRange terminal_range(double energy, double drag_here, double e_t) const;
+  TerminalRange terminal_range(double energy, double drag_here, double e_t, double final_factor) const;
+  /// Depth of a TAEM state at this altitude inside the TAEM altitude and Mach bands (1: on target, 0: edge).
+  double taem_band_depth(double altitude_m) const;
+
   struct LateralTarget {
     double range_m = 0.0;       // great-circle distance to the aim point
     double bearing_rad = 0.0;   // line of sight to the aim point
@@ -178,6 +185,9 @@ class EntryTracker {
   double flown_sigma_rad_ = 0.0;    // bank out of the rate filter
   bool has_flown_sigma_ = false;
   double mean_sigma_d_rad_ = -1.0;  // bank magnitude averaged for the final reversal (< 0: unset)
+  double taem_altitude_m_ = 0.0, taem_altitude_tol_m_ = 0.0;  // TAEM bands (mission)
+  double taem_mach_target_ = 0.0, taem_mach_tol_ = 0.0;       // 0: no Mach band
+  double planned_taem_altitude_m_ = -1e12;                    // end of the profile
   bool final_reversal_done_ = false;
   int last_sign_ = 0;
   double reversal_until_t_s_ = -1.0;
