@@ -215,6 +215,20 @@ double OnboardModels::mach(double altitude_m, double velocity_mps) const {
   return velocity_mps / atmosphere_.speed_of_sound_mps(altitude_m);
 }
 
+bool has_mach_band(const config::TaemInterface& taem) {
+  return taem.mach_target > 0.0 && taem.mach_tol > 0.0 && taem.mach_tol < config::kNotConstrained;
+}
+
+double OnboardModels::taem_band_depth(const config::TaemInterface& taem, double taem_energy_Jpkg,
+                                      double altitude_m) const {
+  double depth = 1.0 - std::fabs(altitude_m - taem.altitude_m) / taem.altitude_tol_m;
+  if (has_mach_band(taem)) {
+    const double v = velocity_from_energy_mps(taem_energy_Jpkg, kEarthRadius_m + altitude_m);
+    depth = std::fmin(depth, 1.0 - std::fabs(mach(altitude_m, v) - taem.mach_target) / taem.mach_tol);
+  }
+  return depth;
+}
+
 double OnboardModels::drag_mps2(double alpha_rad, double altitude_m, double velocity_mps) const {
   const double rho = atmosphere_.density_kgpm3(altitude_m);
   const double cd = aero_.cd(alpha_rad, mach(altitude_m, velocity_mps));

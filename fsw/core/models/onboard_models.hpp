@@ -10,6 +10,7 @@
 
 namespace reentry::config {
 struct Mission;
+struct TaemInterface;
 struct AeroModel;
 struct Table1D;
 }  // namespace reentry::config
@@ -32,6 +33,9 @@ double level_flight_lift_need_mps2(double radius_m, double horizontal_speed_mps,
 
 /// Specific energy E = V^2/2 - mu/r + mu/R (7.8), R = R_eq.
 double specific_energy_Jpkg(double radius_m, double velocity_mps);
+
+/// The mission gives a Mach band at TAEM (target and a finite tolerance).
+bool has_mach_band(const config::TaemInterface& taem);
 
 /// V from (E, r) through (7.8); returns a negative value when the energy is too low
 /// for the radius (V^2 < 0), so callers can detect an impossible point.
@@ -126,6 +130,11 @@ class OnboardModels {
   double area_over_mass() const { return area_over_mass_m2pkg_; }
 
   double mach(double altitude_m, double velocity_mps) const;
+  /// How deep a TAEM state at this altitude and the TAEM energy lies inside the mission's TAEM
+  /// bands: min over {altitude, Mach} of 1 - |x - x_target| / tol (1: on target, 0: on an
+  /// edge, < 0: outside); the altitude band alone when no Mach band is given (has_mach_band).
+  /// Needs altitude_tol_m > 0.
+  double taem_band_depth(const config::TaemInterface& taem, double taem_energy_Jpkg, double altitude_m) const;
   /// Drag acceleration D = rho V^2 CD S / (2 m)  (D.1).
   double drag_mps2(double alpha_rad, double altitude_m, double velocity_mps) const;
   double lift_mps2(double alpha_rad, double altitude_m, double velocity_mps) const;

@@ -114,22 +114,17 @@ double EntryPlanner::taem_box_altitude(const config::Mission& mission) const {
   // the band edge, among the altitudes where q and q*alpha at the TAEM alpha are within their
   // limits (the mission altitude itself when no Mach band is given).
   const config::TaemInterface& t = mission.taem;
-  if (!(t.mach_target > 0.0) || !(t.mach_tol > 0.0) || !(t.mach_tol < config::kNotConstrained) ||
-      !(t.altitude_tol_m > 0.0)) {
-    return t.altitude_m;
-  }
+  if (!has_mach_band(t) || !(t.altitude_tol_m > 0.0)) return t.altitude_m;
   double best_h = t.altitude_m, best_depth = -1e300;
   const double alpha_taem = alpha_profile_.alpha_rad(taem_energy_ / entry_energy_);
   for (int i = 0; i <= kTaemBoxSamples; ++i) {
     const double h = t.altitude_m + t.altitude_tol_m * (2.0 * i / kTaemBoxSamples - 1.0);
     const double v = velocity_from_energy_mps(taem_energy_, kEarthRadius_m + h);
     if (!(v > 0.0)) continue;
-    const double mach = v / models_.atmosphere().speed_of_sound_mps(h);
     // The TAEM state must itself satisfy the dynamic-pressure constraints at the TAEM alpha.
     const double q = 0.5 * models_.atmosphere().density_kgpm3(h) * v * v;
     if (q * alpha_taem > q_alpha_max_ || q > q_max_) continue;
-    const double depth = std::fmin(1.0 - std::fabs(h - t.altitude_m) / t.altitude_tol_m,
-                                   1.0 - std::fabs(mach - t.mach_target) / t.mach_tol);
+    const double depth = models_.taem_band_depth(t, taem_energy_, h);
     if (depth > best_depth) { best_depth = depth; best_h = h; }
   }
   return best_h;

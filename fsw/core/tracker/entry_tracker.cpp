@@ -115,13 +115,7 @@ Status EntryTracker::init(const config::Mission& mission) {
   lateral_e_norm_ = e_taem_norm + kLateralCorridorSpanFraction * (1.0 - e_taem_norm);
   taem_heading_rad_ = mission.taem.heading_rad;
   taem_velocity_mps_ = mission.taem.velocity_mps;
-  taem_altitude_m_ = mission.taem.altitude_m;
-  taem_altitude_tol_m_ = mission.taem.altitude_tol_m;
-  const bool mach_band = mission.taem.mach_target > 0.0 && mission.taem.mach_tol > 0.0 &&
-                         mission.taem.mach_tol < config::kNotConstrained;
-  taem_mach_target_ = mach_band ? mission.taem.mach_target : 0.0;
-  taem_mach_tol_ = mach_band ? mission.taem.mach_tol : 0.0;
-  planned_taem_altitude_m_ = -1e12;
+  taem_ = mission.taem;
   aim_lat_rad_ = mission.taem.latitude_rad;
   aim_lon_rad_ = mission.taem.longitude_rad;
   initial_descent_drag_mps2_ = mission.guidance.initial_descent_drag_mps2;
@@ -142,7 +136,6 @@ Status EntryTracker::init(const config::Mission& mission) {
   last_alpha_cmd_rad_ = 0.0;
   last_sigma_d_rad_ = 0.0;
   flown_alpha_rad_ = -1.0;
-  has_flown_sigma_ = false;
   mean_sigma_d_rad_ = -1.0;
   final_reversal_done_ = false;
   last_sign_ = 0;
@@ -165,7 +158,6 @@ void EntryTracker::set_profile(const ReferenceProfile& profile) {
   double q_max = 0.0;
   for (int k = 0; k < profile_.n_points; ++k) q_max = std::fmax(q_max, profile_.dynamic_pressure_Pa[k]);
   q_ref_Pa_ = q_max > 0.0 ? kQrefFraction * q_max : 1.0;
-  planned_taem_altitude_m_ = profile_.radius_m[profile_.n_points - 1] - kEarthRadius_m;
 }
 
 EntryTracker::RefPoint EntryTracker::reference_at(double energy) {
@@ -252,17 +244,6 @@ EntryTracker::TerminalRange EntryTracker::terminal_range(double energy, double d
   return t;
 }
 
-double EntryTracker::taem_band_depth(double altitude_m) const {
-  // How deep a TAEM state at this altitude (and the TAEM energy) lies inside the TAEM bands:
-  // min over {altitude, Mach} of 1 - |x - x_target| / tol (1: on target, 0: on the edge).
-  double depth = 1.0 - std::fabs(altitude_m - taem_altitude_m_) / taem_altitude_tol_m_;
-  if (taem_mach_tol_ > 0.0) {
-    const double v = velocity_from_energy_mps(taem_energy_Jpkg_, kEarthRadius_m + altitude_m);
-    depth = std::fmin(depth, 1.0 - std::fabs(models_.mach(altitude_m, v) - taem_mach_target_) / taem_mach_tol_);
-  }
-  return depth;
-}
-
 double EntryTracker::final_drag_factor() const {
   // Of the sensed drag-to-model ratio K, the part the final drag must take so that the TAEM
   // state stays inside its bands. Flying the planned final drag D_f in air K times the model's
@@ -275,10 +256,12 @@ double EntryTracker::final_drag_factor() const {
   // TAEM state stays inside the bands: X-33 672/700, HORUS 75/500 (57 with k = K; 51 when a
   // quarter of the half band, or the planned depth, is kept).
   const double K = drag_scale_;
-  if (!(taem_altitude_tol_m_ > 0.0) || !(planned_taem_altitude_m_ > -1e9)) return K;
+  if (!(taem_.altitude_tol_m > 0.0) || !has_profile_) return K;
+  const double planned_altitude_m = profile_.radius_m[profile_.n_points - 1] - kEarthRadius_m;
   for (int i = 0; i <= kFinalFactorSamples; ++i) {
     const double k = 1.0 + (K - 1.0) * i / kFinalFactorSamples;
-    if (taem_band_depth(planned_taem_altitude_m_ + kScaleHeight_m * std::log(K / k)) >= 0.0) return k;
+    const double altitude_m = planned_altitude_m + kScaleHeight_m * std::log(K / k);
+    if (models_.taem_band_depth(taem_, taem_energy_Jpkg_, altitude_m) >= 0.0) return k;
   }
   return K;
 }
@@ -711,7 +694,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   last_sign_ = sign_ref;
   // Bank flown now (the rate filter's output, else the tracker's own last command), carried
   // towards the command at the maximum rate for the alpha lag.
-  const double sigma_flown = has_flown_sigma_ ? flown_sigma_rad_ : last_sign_ * last_sigma_d_rad_;
+  const double sigma_flown = flown_alpha_rad_ >= 0.0 ? flown_sigma_rad_ : last_sign_ * last_sigma_d_rad_;
   const double max_roll_rad = sigma_rate_max_radps_ * kAlphaModulationLead_s;
   const double cos_lead =
       std::cos(sigma_flown + clamp(sign_ref * sigma_d - sigma_flown, -max_roll_rad, max_roll_rad));

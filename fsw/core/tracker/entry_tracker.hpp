@@ -33,10 +33,7 @@
 
 #include "guidance_types.hpp"
 #include "models/onboard_models.hpp"
-
-namespace reentry::config {
-struct Mission;
-}
+#include "reentry/config/mission.hpp"
 
 namespace reentry::fsw {
 
@@ -98,7 +95,6 @@ class EntryTracker {
   void set_flown_attitude(double alpha_rad, double sigma_rad) {
     flown_alpha_rad_ = alpha_rad;
     flown_sigma_rad_ = sigma_rad;
-    has_flown_sigma_ = true;
   }
   bool has_profile() const { return has_profile_; }
   /// Factor on the planned final drag in the terminal phase: the part of the sensed
@@ -125,8 +121,6 @@ class EntryTracker {
     double sensitivity = 0.0;  // d range / d c of the terminal drag increment [m per m/s^2]
   };
   TerminalRange terminal_range(double energy, double drag_here, double e_t, double final_factor) const;
-  /// Depth of a TAEM state at this altitude inside the TAEM altitude and Mach bands (1: on target, 0: edge).
-  double taem_band_depth(double altitude_m) const;
 
   struct LateralTarget {
     double range_m = 0.0;       // great-circle distance to the aim point
@@ -181,13 +175,10 @@ class EntryTracker {
   double lod_scale_ = 1.0;          // sensed L/D / model L/D, filtered
   double last_alpha_cmd_rad_ = 0.0; // alpha commanded in the previous cycle
   double last_sigma_d_rad_ = 0.0;   // bank magnitude commanded in the previous cycle
-  double flown_alpha_rad_ = -1.0;   // alpha out of the rate filter (< 0: not given)
-  double flown_sigma_rad_ = 0.0;    // bank out of the rate filter
-  bool has_flown_sigma_ = false;
+  double flown_alpha_rad_ = -1.0;   // alpha out of the rate filter (< 0: attitude not given)
+  double flown_sigma_rad_ = 0.0;    // bank out of the rate filter (given with the alpha)
   double mean_sigma_d_rad_ = -1.0;  // bank magnitude averaged for the final reversal (< 0: unset)
-  double taem_altitude_m_ = 0.0, taem_altitude_tol_m_ = 0.0;  // TAEM bands (mission)
-  double taem_mach_target_ = 0.0, taem_mach_tol_ = 0.0;       // 0: no Mach band
-  double planned_taem_altitude_m_ = -1e12;                    // end of the profile
+  config::TaemInterface taem_{};    // TAEM interface and bands (mission)
   bool final_reversal_done_ = false;
   int last_sign_ = 0;
   double reversal_until_t_s_ = -1.0;
