@@ -282,6 +282,34 @@ TEST(AlphaPlannerMissions, X33ProfileIsMonotoneInEnergyAndWithinLimits) {
   check_searches_against_scan(*planner, m.constraints.alpha_max_rad, 20.0);
 }
 
+TEST(AlphaPlannerMissions, TaemMatchingRampStaysWithinTheAlphaRate) {
+  // The ranging -> alpha(L/D max) transition is a ramp the vehicle can fly: along the
+  // equilibrium glide the velocity falls at dV/dt = -D, so the alpha rate of the profile is
+  // |d alpha / dV| D, which must stay below alpha_rate_max (the least dV of (6.12) is the
+  // whole step flown at the rate limit). The ramp ends at alpha(L/D max) at V_taem + dV.
+  for (const char* name : {"x33", "horus"}) {
+    SCOPED_TRACE(name);
+    const config::Mission m = load(name);
+    auto planner = make_planner(m);
+    AlphaPlanResult r;
+    ASSERT_EQ(planner->plan(AlphaPlanParams{}, r), Status::kOk);
+    int ramp_points = 0;
+    double alpha_drop = 0.0;
+    for (int i = 1; i < r.n_corridor; ++i) {
+      const AlphaCorridorPoint& a = r.corridor[i - 1];
+      const AlphaCorridorPoint& b = r.corridor[i];
+      if (b.phase != AlphaPhase::kTaem) continue;
+      ++ramp_points;
+      alpha_drop += a.alpha_rad - b.alpha_rad;
+      const double drag = planner->models().drag_mps2(b.alpha_rad, b.h_path_m, b.velocity_mps);
+      const double rate = std::fabs((a.alpha_rad - b.alpha_rad) / (a.velocity_mps - b.velocity_mps)) * drag;
+      EXPECT_LT(rate, m.constraints.alpha_rate_max_radps) << "V " << b.velocity_mps;
+    }
+    EXPECT_GE(ramp_points, 3);
+    EXPECT_GT(alpha_drop, 5.0 * kDeg);  // a real transition, not a hold
+  }
+}
+
 TEST(AlphaPlannerMissions, HorusHeatFluxDominatesDownToAboutFourAndAHalfKmPerSecond) {
   // Thesis 6.1.1 / fig. 6.6: "until about 4.5 km/s, the lower boundary of the corridor is
   // constrained by the heat flux" (exponential atmosphere).

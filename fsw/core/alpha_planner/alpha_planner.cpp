@@ -328,7 +328,11 @@ Status AlphaPlanner::plan(const AlphaPlanParams& params, AlphaPlanResult& out) c
       h = h_ranging_m[i];
     } else {
       p.phase = AlphaPhase::kTaem;
-      h = p.h_glide_ld_max_m;
+      // TAEM matching: ramp from the ranging path to the alpha(L/D max) glide, reached at
+      // V_taem + dV (6.12) and held to TAEM (an alpha step here outruns the rate limit).
+      const double span = out.v_taem_switch_mps - v_end;
+      const double w = span > 0.0 ? std::fmin(1.0, std::fmax(0.0, (out.v_taem_switch_mps - v) / span)) : 1.0;
+      h = h_ranging_m[i] + w * (p.h_glide_ld_max_m - h_ranging_m[i]);
     }
     h = std::fmax(h, p.h_lower_m);
     h = std::fmin(h, p.h_glide_cl_max_m);  // closed corridor: fly the upper boundary
