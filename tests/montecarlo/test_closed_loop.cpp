@@ -69,15 +69,18 @@ TEST(PlannedAlpha, ProfileCoversTheEnergyRangeMonotoneWithinAlphaMax) {
   EXPECT_EQ(table.alpha_profile.y, before);
 }
 
-TEST(PlannedAlpha, X33FliesToTheTaemEnergyWithThePlannedProfile) {
-  // The guidance plans the profile at start-up; the flight reaches the TAEM energy (it does not
-  // yet meet every tolerance: see README status).
+TEST(PlannedAlpha, X33NominalReachesTaemWithinEveryToleranceWithThePlannedProfile) {
+  // The guidance plans the profile at start-up (thesis ch. 6, with the TAEM-matching ramp);
+  // the mission is judged like the hand-profile X-33: every constraint and TAEM tolerance,
+  // the altitude included (the step of the profile before the ramp left it 2.6 km high).
   const config::Mission m = load("x33_planned_alpha");
   const tools::ClosedLoopResult r = tools::run_closed_loop(m, 1, false);
   ASSERT_TRUE(r.error.empty()) << r.error;
   EXPECT_EQ(r.summary.event, truth::SimEvent::kTaemEnergy);
   EXPECT_GE(r.plans_adopted, 2);
-  EXPECT_LT(r.verdict.taem_miss_m, 50e3);
+  for (const auto& v : r.verdict.violations) ADD_FAILURE() << "violation: " << v;
+  EXPECT_TRUE(r.verdict.success);
+  EXPECT_LT(std::fabs(r.verdict.altitude_err_m), m.taem.altitude_tol_m);
 }
 
 }  // namespace
