@@ -145,6 +145,15 @@ RunSummary run_open_loop(Simulator& sim, const OpenLoopProfile& profile, double 
   return summary;
 }
 
+RunMaxima wings_level_pullout_maxima(Simulator& sim, double alpha_rad) {
+  const double rate = sim.mission().guidance.gnc_rate_hz > 0.0 ? sim.mission().guidance.gnc_rate_hz : 10.0;
+  const double tick_s = 1.0 / rate;
+  sim.set_command(alpha_rad, 0.0);
+  // The climb that follows the pull-out is not part of it: stop at the first gamma >= 0.
+  while (!sim.finished() && sim.sample().gamma_rad < 0.0) sim.advance_to(sim.time_s() + tick_s);
+  return sim.summary().maxima;
+}
+
 void write_trajectory_header(std::ostream& out) {
   out << "t_s,h_m,r_m,lat_deg,lon_deg,V_mps,gamma_deg,chi_deg,mach,rho_kgpm3,q_Pa,qdot_Wpm2,Q_Jpm2,n_g,"
          "D_mps2,L_mps2,E_Jpkg,alpha_deg,sigma_deg\n";

@@ -33,6 +33,15 @@ bool load_open_loop_profile(const std::string& path, OpenLoopProfile* profile, s
 RunSummary run_open_loop(Simulator& sim, const OpenLoopProfile& profile, double out_dt_s,
                          const std::function<void(const TruthSample&)>& on_sample);
 
+/// The entry descent flown wings level at the constant alpha `alpha_rad` (sigma = 0, the most
+/// vertical lift the vehicle has when C_L rises up to that alpha) from the simulator's present
+/// state until the Earth-relative flight-path angle first reaches zero (the bottom of the first
+/// pull-out) or an event ends the flight. A bank only lowers the vertical lift and so deepens
+/// the pull-out: the maxima returned (heat flux, q, q alpha, load factor at every accepted
+/// integrator step) are the least any guidance can reach at the bottom of the entry descent.
+/// Bounded by the simulator's time limit.
+RunMaxima wings_level_pullout_maxima(Simulator& sim, double alpha_rad);
+
 /// Trajectory CSV: header line, and one row per sample, SI units except angles in degrees.
 void write_trajectory_header(std::ostream& out);
 void write_trajectory_row(std::ostream& out, const TruthSample& s);

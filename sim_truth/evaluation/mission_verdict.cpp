@@ -18,6 +18,15 @@ void check_max(std::vector<std::string>& v, const char* name, double value, doub
 }
 }  // namespace
 
+std::vector<std::string> path_constraint_violations(const config::PathConstraints& c, const RunMaxima& maxima) {
+  std::vector<std::string> v;
+  check_max(v, "heat_flux", maxima.qdot_Wpm2, c.heat_flux_max_Wpm2);
+  check_max(v, "load_factor", maxima.n_g, c.load_factor_max_g);
+  check_max(v, "dynamic_pressure", maxima.q_Pa, c.dynamic_pressure_max_Pa);
+  check_max(v, "q_alpha", maxima.q_alpha_Pa_rad, c.q_alpha_max_Pa_rad);
+  return v;
+}
+
 MissionVerdict judge_mission(const config::Mission& mission, const RunSummary& summary,
                              const CommandRateMaxima& rates) {
   MissionVerdict v;
@@ -26,11 +35,8 @@ MissionVerdict judge_mission(const config::Mission& mission, const RunSummary& s
   const auto& taem = mission.taem;
 
   // Path constraints (thesis 3.1-3.7) and control constraints (alpha/sigma rates).
-  check_max(v.violations, "heat_flux", summary.maxima.qdot_Wpm2, c.heat_flux_max_Wpm2);
+  v.violations = path_constraint_violations(c, summary.maxima);
   check_max(v.violations, "heat_load", f.Q_Jpm2, c.heat_load_max_Jpm2);
-  check_max(v.violations, "load_factor", summary.maxima.n_g, c.load_factor_max_g);
-  check_max(v.violations, "dynamic_pressure", summary.maxima.q_Pa, c.dynamic_pressure_max_Pa);
-  check_max(v.violations, "q_alpha", summary.maxima.q_alpha_Pa_rad, c.q_alpha_max_Pa_rad);
   check_max(v.violations, "alpha_rate", rates.alpha_rate_radps, c.alpha_rate_max_radps);
   check_max(v.violations, "sigma_rate", rates.sigma_rate_radps, c.sigma_rate_max_radps);
 

@@ -33,6 +33,10 @@ struct MissionVerdict {
 /// Relative tolerance on path-constraint maxima (a limit met exactly is not a violation).
 inline constexpr double kConstraintSlack = 1e-9;
 
+/// Names of the path constraints (heat flux, load factor, q, q alpha) whose maxima exceed the
+/// mission's limits, in the order and with the slack of judge_mission.
+std::vector<std::string> path_constraint_violations(const config::PathConstraints& c, const RunMaxima& maxima);
+
 MissionVerdict judge_mission(const config::Mission& mission, const RunSummary& summary,
                              const CommandRateMaxima& rates);
 

@@ -33,6 +33,27 @@ for k in ("runs", "successes", "success_rate", "ci95_low", "ci95_high", "miss_km
     assert rw[k] == rm[k], k
 print("campaign ok:", rw["successes"], "/", rw["runs"], "successful, miss p50", round(rw["miss_km_p50"], 2), "km")
 PY
+# --pullout-bound: per-run wings-level pull-out maxima and the bound in the report; the
+# closed-loop records themselves are unchanged.
+"$mc" --mission x33 --runs 4 --seed 11 --pullout-bound --out "$dir/bound" >/dev/null 2>&1 || fail "pullout bound"
+/usr/bin/python3 - "$dir" <<'PY' || exit 1
+import json, sys, os
+d = sys.argv[1]
+load = lambda sub: [json.loads(l) for l in open(os.path.join(d, sub, "runs.jsonl")) if l.strip()]
+strip = lambda r: {k: v for k, v in r.items() if k not in ("wall_s", "planner_ms_max", "pullout_bound")}
+bound, whole = load("bound"), load("whole")
+assert [strip(r) for r in bound] == [strip(r) for r in whole], "--pullout-bound changed the closed-loop runs"
+for r in bound:
+    b = r["pullout_bound"]
+    assert b["error"] == "" and b["heat_flux_kW_m2"] > 0 and b["g"] > 0, b
+    # the closed-loop flight's maxima include its own first pull-out: never below the bound
+    assert r["max_heat_flux_kW_m2"] >= b["heat_flux_kW_m2"] * (1 - 1e-9), (r["seed"], r["max_heat_flux_kW_m2"], b)
+rep = json.load(open(os.path.join(d, "bound", "report.json")))
+pb = rep["pullout_bound"]
+n_ex = sum(1 for r in bound if r["pullout_bound"]["exceeded"])
+assert pb["runs"] == 4 and pb["runs_exceeding"] == n_ex and abs(pb["success_rate_upper_bound"] - (4 - n_ex) / 4) < 1e-12, pb
+assert "pullout_bound" not in json.load(open(os.path.join(d, "whole", "report.json")))
+PY
 "$mc" --mission x33 --runs 4 --shard 3/2 --out "$dir/bad" >/dev/null 2>&1 && fail "--shard 3/2 accepted"
 "$mc" --mission x33 --runs 0 --out "$dir/bad" >/dev/null 2>&1 && fail "--runs 0 accepted"
 "$mc" --merge "$dir/s0" "$dir/s0" --out "$dir/bad" >/dev/null 2>&1 && fail "duplicate runs accepted in merge"

@@ -482,6 +482,44 @@ TEST(OpenLoop, RunnerSamplesEveryOutputIntervalAndTheEvent) {
   EXPECT_NEAR(mid.alpha_rad, (30.0 + 10.0 * x) * kDeg, 0.05 * kDeg);
 }
 
+TEST(OpenLoop, WingsLevelPulloutBoundsEveryBankedDescent) {
+  // The wings-level pull-out stops at the bottom (first gamma >= 0) and its heat-flux, q and
+  // load peaks are below those of the same descent flown with any constant bank: less
+  // vertical lift takes the vehicle deeper before it levels off (the bound reentry_mc
+  // --pullout-bound reports). A steeper entry raises the bound.
+  const config::Mission m = truth_test::x33_test_mission();
+  const double alpha = 40.0 * kDeg;
+  auto level = make(m, simple_models());
+  const RunMaxima bound = wings_level_pullout_maxima(*level, alpha);
+  ASSERT_FALSE(level->finished());
+  EXPECT_GE(level->sample().gamma_rad, 0.0);
+  EXPECT_GT(bound.qdot_Wpm2, 0.0);
+  for (double sigma_deg : {20.0, 45.0, 70.0}) {
+    SCOPED_TRACE(sigma_deg);
+    auto banked = make(m, simple_models());
+    OpenLoopProfile p;
+    p.x = {0.0};
+    p.alpha_rad = {alpha};
+    p.sigma_rad = {sigma_deg * kDeg};
+    double qdot = 0.0, q = 0.0, n = 0.0;
+    bool bottom = false;
+    run_open_loop(*banked, p, 0.1, [&](const TruthSample& s) {
+      if (bottom || s.t_s == 0.0) return;
+      bottom = s.gamma_rad >= 0.0;
+      qdot = std::max(qdot, s.qdot_Wpm2);
+      q = std::max(q, s.q_Pa);
+      n = std::max(n, s.n_g);
+    });
+    EXPECT_GT(qdot, bound.qdot_Wpm2);
+    EXPECT_GT(q, bound.q_Pa);
+    EXPECT_GT(n, bound.n_g);
+  }
+  config::Mission steep = m;
+  steep.entry.flight_path_rad -= 0.3 * kDeg;
+  auto deeper = make(steep, simple_models());
+  EXPECT_GT(wings_level_pullout_maxima(*deeper, alpha).qdot_Wpm2, bound.qdot_Wpm2);
+}
+
 TEST(Performance, FullOpenLoopEntryReport) {
   // Reported, not asserted (timing belongs in benchmarks): a full open-loop entry (alpha 40 deg,
   // sigma 60 deg, 10 Hz command ticks) at rel tol 1e-10, with the simple models and with the

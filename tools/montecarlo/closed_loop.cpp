@@ -5,10 +5,26 @@
 #include <cmath>
 #include <cstdio>
 
+#include "dynamics/open_loop.hpp"
 #include "guidance/guidance_stack.hpp"
 #include "nav/relative_state.hpp"
 
 namespace reentry::tools {
+
+PulloutBound wings_level_pullout_bound(const config::Mission& mission, std::uint64_t seed, bool dispersed) {
+  PulloutBound b;
+  truth::SimOverrides ov;
+  if (dispersed) ov.dispersion = truth::draw_dispersions(mission.dispersions, seed);
+  std::string err;
+  auto sim = truth::Simulator::create(mission, ov, &err);
+  if (!sim) {
+    b.error = "simulator: " + err;
+    return b;
+  }
+  b.maxima = truth::wings_level_pullout_maxima(*sim, mission.constraints.alpha_max_rad);
+  b.exceeded = truth::path_constraint_violations(mission.constraints, b.maxima);
+  return b;
+}
 
 ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t seed, bool dispersed,
                                  const std::string& trace_csv) {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "dynamics/simulator.hpp"
 #include "evaluation/mission_verdict.hpp"
@@ -28,6 +29,16 @@ struct ClosedLoopResult {
   double cycle_us_max = 0.0;
   double wall_s = 0.0;
 };
+
+/// Physics bound of one run: the maxima of the entry descent flown wings level at alpha_max
+/// with the same dispersions (truth::wings_level_pullout_maxima), and the path constraints
+/// they already exceed; no guidance can do better at the first pull-out.
+struct PulloutBound {
+  std::string error;
+  truth::RunMaxima maxima;
+  std::vector<std::string> exceeded;
+};
+PulloutBound wings_level_pullout_bound(const config::Mission& mission, std::uint64_t seed, bool dispersed);
 
 /// Flies the mission; dispersed runs draw their dispersions from `seed` (draw_dispersions).
 /// A non-empty `trace_csv` receives the truth state and the guidance command once per second

@@ -1,6 +1,9 @@
 // reentry_mc: Monte Carlo dispersion campaigns of closed-loop missions flown in process.
 //   reentry_mc --mission M --runs N --seed S --out DIR [--jobs J] [--shard i/K] [--nominal]
 //   reentry_mc --merge DIR1 [DIR2 ...] --out DIR
+// --pullout-bound adds, per run, the maxima of the entry descent flown wings level at
+// alpha_max with the run's dispersions, and to the report the runs that exceed a path
+// constraint there (an upper bound on the success rate that no guidance can beat).
 // Run r (0 <= r < N) uses seed S + r, so any run is reproduced alone with the same seed
 // (e.g. tools/sil --seed S+r). A shard i/K flies the runs with r % K == i and writes
 // DIR/runs_shard_i_of_K.jsonl; a whole campaign writes DIR/runs.jsonl; --merge combines the
@@ -174,6 +177,21 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
                      {"violations", sorted[i]["violations"]}});
   }
   rep["worst_cases"] = worst;
+  // Physics bound (--pullout-bound): runs whose wings-level pull-out at alpha_max already
+  // exceeds a path constraint fail whatever the guidance does.
+  int bounded = 0;
+  json exceeding = json::array();
+  for (const auto& r : runs) {
+    if (!r.contains("pullout_bound")) continue;
+    ++bounded;
+    if (!r["pullout_bound"]["exceeded"].empty()) exceeding.push_back(r["seed"]);
+  }
+  if (bounded > 0) {
+    rep["pullout_bound"] = {{"runs", bounded},
+                            {"runs_exceeding", exceeding.size()},
+                            {"success_rate_upper_bound", static_cast<double>(bounded - static_cast<int>(exceeding.size())) / bounded},
+                            {"seeds_exceeding", exceeding}};
+  }
   return rep;
 }
 
@@ -193,6 +211,12 @@ int write_report(const std::vector<std::string>& dirs, const std::string& out, c
               name.c_str(), rep["successes"].get<int>(), rep["runs"].get<int>(), 100.0 * rep["success_rate"].get<double>(),
               100.0 * rep["ci95_low"].get<double>(), 100.0 * rep["ci95_high"].get<double>(),
               rep["miss_km_p50"].get<double>(), rep["miss_km_p95"].get<double>(), rep["miss_km_max"].get<double>());
+  if (rep.contains("pullout_bound")) {
+    const json& b = rep["pullout_bound"];
+    std::printf("%s: wings-level pull-out at alpha_max exceeds a path constraint in %d/%d runs: success rate <= %.1f %%\n",
+                name.c_str(), b["runs_exceeding"].get<int>(), b["runs"].get<int>(),
+                100.0 * b["success_rate_upper_bound"].get<double>());
+  }
   return 0;
 }
 
@@ -203,7 +227,7 @@ int main(int argc, char** argv) {
   std::string mission_arg, out, shard;
   int runs = 0, jobs = 0;
   std::uint64_t seed = 1;
-  bool nominal = false, trace = false;
+  bool nominal = false, trace = false, pullout_bound = false;
   std::vector<std::string> merge;
   app.add_option("--mission", mission_arg, "mission name or TOML file");
   app.add_option("--runs", runs, "number of runs of the whole campaign");
@@ -213,6 +237,8 @@ int main(int argc, char** argv) {
   app.add_option("--shard", shard, "i/K: fly only the runs r with r % K == i");
   app.add_flag("--nominal", nominal, "no dispersions (every run nominal)");
   app.add_flag("--trace", trace, "write each run's trajectory (1 Hz) to --out/traces/run_<seed>.csv");
+  app.add_flag("--pullout-bound", pullout_bound,
+               "also fly each run's entry descent wings level at alpha_max (the physics bound of the first pull-out)");
   app.add_option("--merge", merge, "combine the run files of these directories into --out/report.json");
   CLI11_PARSE(app, argc, argv);
 
@@ -252,6 +278,16 @@ int main(int argc, char** argv) {
       const ClosedLoopResult res = reentry::tools::run_closed_loop(loaded.mission, seed + r, !nominal, trace_csv);
       records[i] = run_record(r, res);
       records[i]["mission"] = loaded.mission.name;
+      if (pullout_bound) {
+        const auto b = reentry::tools::wings_level_pullout_bound(loaded.mission, seed + r, !nominal);
+        const auto& m = b.maxima;
+        records[i]["pullout_bound"] = {{"error", b.error},
+                                       {"heat_flux_kW_m2", m.qdot_Wpm2 * 1e-3},
+                                       {"q_kPa", m.q_Pa * 1e-3},
+                                       {"q_alpha_kPa_deg", m.q_alpha_Pa_rad * 1e-3 * kDeg},
+                                       {"g", m.n_g},
+                                       {"exceeded", b.exceeded}};
+      }
       const int d = ++done;
       std::lock_guard<std::mutex> lock(progress_mutex);
       progress(d, static_cast<int>(mine.size()),
