@@ -5,6 +5,8 @@
 
 #include <cstdint>
 
+#include "numerics/status.hpp"
+
 namespace reentry::fsw {
 
 /// Capacity of a reference profile over energy (matches interfaces/plan_t.lcm MAX_POINTS).
@@ -25,6 +27,17 @@ enum class Status : std::int8_t {
 };
 
 const char* to_string(Status s);
+
+/// A numerics status as a guidance status (kStepTooSmall, an integrator failure, as kNonFinite).
+inline Status to_status(numerics::NumStatus s) {
+  switch (s) {
+    case numerics::NumStatus::kOk: return Status::kOk;
+    case numerics::NumStatus::kInvalidInput: return Status::kInvalidInput;
+    case numerics::NumStatus::kNoBracket: return Status::kNoBracket;
+    case numerics::NumStatus::kMaxIterations: return Status::kMaxIterations;
+    default: return Status::kNonFinite;
+  }
+}
 
 /// Guidance phase, published in the command/status messages.
 enum class Phase : std::int8_t {

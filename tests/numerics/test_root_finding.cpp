@@ -41,6 +41,20 @@ TEST(RootFinding, SecantConverges) {
   std::printf("secant: |x - root| = %.3e in %d iterations\n", std::fabs(r.x - kRoot), r.iterations);
 }
 
+TEST(RootFinding, BrentFunctionToleranceStopsOnTheResidual) {
+  // |f| <= f_tol ends the search (the planner's length and reversal solves stop on a range
+  // residual); the point returned satisfies it, and by the mean-value theorem lies within
+  // f_tol / min |f'| of the root (|g'| = |sin x + 3 x^2| > 1.5 near the root 0.865).
+  int evals_tight = 0, evals_loose = 0;
+  const auto tight = rn::brent([&](double x) { ++evals_tight; return g(x); }, 0.0, 1.0, 1e-14, 100);
+  const auto loose = rn::brent([&](double x) { ++evals_loose; return g(x); }, 0.0, 1.0, 1e-14, 100, 1e-3);
+  ASSERT_EQ(loose.status, rn::NumStatus::kOk);
+  ASSERT_EQ(tight.status, rn::NumStatus::kOk);
+  EXPECT_LE(std::fabs(g(loose.x)), 1e-3);
+  EXPECT_NEAR(loose.x, kRoot, 1e-3 / 1.5);
+  EXPECT_LT(evals_loose, evals_tight);
+}
+
 TEST(RootFinding, NoBracketReported) {
   // cos x - x^3 < 0 on [2, 3].
   EXPECT_EQ(rn::brent(g, 2.0, 3.0, 1e-12, 50).status, rn::NumStatus::kNoBracket);

@@ -12,7 +12,6 @@
 #include <random>
 
 #include "models/onboard_models.hpp"
-#include "planner/bracketed_root.hpp"
 #include "planner/drag_derivatives.hpp"
 #include "planner/drag_profile.hpp"
 #include "planner/entry_planner.hpp"
@@ -242,17 +241,6 @@ TEST(DragProfile, SolvedLevelsReproduceTheLength) {
   // A length no positive level can produce: the solver says so.
   ThreeSegmentProfile q{3e7, 1.8e7, 5e6, 5e5, 0.8, 1.0, 6.0};
   EXPECT_EQ(q.solve_constant_drag(1.0, 1e-3, 500.0), Status::kNoBracket);
-}
-
-// ---------------------------------------------------------------- root finding
-TEST(RootFinding, BrentFindsRootAndReportsNoBracket) {
-  const BracketedRoot r = brent_root([](double x) { return std::cos(x) - x; }, 0.0, 1.0, 1e-14, 0.0, 100);
-  ASSERT_EQ(r.status, Status::kOk);
-  EXPECT_NEAR(r.x, 0.7390851332151607, 1e-12);
-  const BracketedRoot n = brent_root([](double x) { return x * x + 1.0; }, -1.0, 2.0, 1e-12, 0.0, 100);
-  EXPECT_EQ(n.status, Status::kNoBracket);
-  const BracketedRoot f = brent_root([](double x) { return x > 0.5 ? std::nan("") : -1.0; }, 0.0, 1.0, 1e-12, 0.0, 100);
-  EXPECT_EQ(f.status, Status::kNonFinite);
 }
 
 // ---------------------------------------------------------------- drag derivatives (7.14), (7.17)

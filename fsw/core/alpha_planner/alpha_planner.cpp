@@ -13,16 +13,6 @@ constexpr double kAlphaTol_rad = 1e-10;
 constexpr int kRootMaxIter = 200;
 constexpr int kGoldenIter = 60;
 
-Status to_status(numerics::NumStatus s) {
-  switch (s) {
-    case numerics::NumStatus::kOk: return Status::kOk;
-    case numerics::NumStatus::kInvalidInput: return Status::kInvalidInput;
-    case numerics::NumStatus::kNoBracket: return Status::kNoBracket;
-    case numerics::NumStatus::kMaxIterations: return Status::kMaxIterations;
-    default: return Status::kNonFinite;
-  }
-}
-
 bool valid_pct(double p) { return std::isfinite(p) && p >= 0.0 && p <= 100.0; }
 
 }  // namespace

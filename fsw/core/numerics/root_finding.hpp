@@ -46,9 +46,10 @@ bool bracket_check(F& f, double a, double b, double x_tol, int max_iter, double&
 }  // namespace detail
 
 // Brent's method (inverse quadratic interpolation / secant / bisection) on a bracket [a, b].
-// Converged when the bracket half-width is below 0.5 * x_tol + 2 eps |x| or f(x) == 0.
+// Converged when the bracket half-width is below 0.5 * x_tol + 2 eps |x| or |f(x)| <= f_tol
+// (f_tol = 0: only an exact zero).
 template <class F>
-RootResult brent(F&& f, double a, double b, double x_tol, int max_iter) {
+RootResult brent(F&& f, double a, double b, double x_tol, int max_iter, double f_tol = 0.0) {
   double fa = 0.0, fb = 0.0;
   RootResult early{};
   if (detail::bracket_check(f, a, b, x_tol, max_iter, fa, fb, early)) return early;
@@ -74,7 +75,7 @@ RootResult brent(F&& f, double a, double b, double x_tol, int max_iter) {
     }
     const double tol = 2.0 * kEps * std::fabs(b) + 0.5 * x_tol;
     const double m = 0.5 * (c - b);
-    if (std::fabs(m) <= tol || fb == 0.0) return {b, fb, it - 1, NumStatus::kOk};
+    if (std::fabs(m) <= tol || std::fabs(fb) <= f_tol) return {b, fb, it - 1, NumStatus::kOk};
     if (std::fabs(e) >= tol && std::fabs(fa) > std::fabs(fb)) {
       double p = 0.0;
       double q = 0.0;

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "planner/bracketed_root.hpp"
+#include "numerics/root_finding.hpp"
 
 namespace reentry::fsw {
 
@@ -41,8 +41,8 @@ Status ThreeSegmentProfile::solve_constant_drag(double s_m, double dc_min, doubl
     trial.d_c = std::exp(dc);
     return s_m - trial.length_m();
   };
-  const BracketedRoot root = brent_root(residual, std::log(dc_min), std::log(dc_max), 1e-12, 1e-6, 100);
-  if (root.status != Status::kOk) return root.status;
+  const numerics::RootResult root = numerics::brent(residual, std::log(dc_min), std::log(dc_max), 1e-12, 100, 1e-6);
+  if (to_status(root.status) != Status::kOk) return to_status(root.status);
   d_c = std::exp(root.x);
   return valid() ? Status::kOk : Status::kNonFinite;
 }
@@ -106,8 +106,8 @@ Status SmoothProfile::solve_level(double s_m, double dc_min, double dc_max) {
     trial.d_c = std::exp(log_dc);
     return s_m - trial.length_m();
   };
-  const BracketedRoot root = brent_root(residual, std::log(dc_min), std::log(dc_max), 1e-12, 1e-6, 100);
-  if (root.status != Status::kOk) return root.status;
+  const numerics::RootResult root = numerics::brent(residual, std::log(dc_min), std::log(dc_max), 1e-12, 100, 1e-6);
+  if (to_status(root.status) != Status::kOk) return to_status(root.status);
   d_c = std::exp(root.x);
   return valid() ? Status::kOk : Status::kNonFinite;
 }

@@ -4,7 +4,7 @@
 
 #include <reentry/config/mission.hpp>
 
-#include "planner/bracketed_root.hpp"
+#include "numerics/root_finding.hpp"
 #include "planner/drag_derivatives.hpp"
 #include "planner/mission_geometry.hpp"
 
@@ -160,13 +160,13 @@ Status EntryPlanner::equilibrium_glide_radius() {
       const double v = velocity_from_energy_mps(energy, r);
       return models_.lift_mps2(alpha, h, v) - (gravity_mps2(r) - v * v / r);
     };
-    const BracketedRoot root = brent_root(residual, 0.0, h_top, 1.0, 0.0, kRootIterations);
-    if (root.status == Status::kOk || root.status == Status::kMaxIterations) {
+    const numerics::RootResult root = numerics::brent(residual, 0.0, h_top, 1.0, kRootIterations);
+    if (to_status(root.status) == Status::kOk || to_status(root.status) == Status::kMaxIterations) {
       r_[k] = kEarthRadius_m + root.x;
-    } else if (root.status == Status::kNoBracket && residual(h_top) > 0.0) {
+    } else if (to_status(root.status) == Status::kNoBracket && residual(h_top) > 0.0) {
       r_[k] = kEarthRadius_m + h_top;  // lift exceeds the need everywhere: highest admissible point
     } else {
-      return root.status == Status::kNoBracket ? Status::kExtractionFailed : root.status;
+      return to_status(root.status) == Status::kNoBracket ? Status::kExtractionFailed : to_status(root.status);
     }
   }
   return Status::kOk;
@@ -300,9 +300,9 @@ Status EntryPlanner::extract() {
     auto residual = [&](double h) {  // (7.13)
       return models_.drag_mps2(alpha, h, velocity_from_energy_mps(energy, kEarthRadius_m + h)) - drag;
     };
-    const BracketedRoot root = brent_root(residual, 0.0, h_top, 0.05, 0.0, kRootIterations);
-    if (root.status == Status::kNoBracket) return Status::kExtractionFailed;
-    if (root.status != Status::kOk && root.status != Status::kMaxIterations) return root.status;
+    const numerics::RootResult root = numerics::brent(residual, 0.0, h_top, 0.05, kRootIterations);
+    if (to_status(root.status) == Status::kNoBracket) return Status::kExtractionFailed;
+    if (to_status(root.status) != Status::kOk && to_status(root.status) != Status::kMaxIterations) return to_status(root.status);
     const double h = root.x;
     r_[k] = kEarthRadius_m + h;
     v_[k] = velocity_from_energy_mps(energy, r_[k]);
@@ -515,18 +515,18 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
   };
   const double f_tol = 0.25 * crossrange_tol_m_ / r_mean_;
   // Reversal range from (just after) the planning point to the end; secant/Brent on a2.
-  BracketedRoot root = brent_root(crossrange, 1e-9 * s_total_, s_total_ * (1.0 - 1e-9), 1e-9 * s_total_, f_tol, 60);
-  if (root.status == Status::kNoBracket) {
+  numerics::RootResult root = numerics::brent(crossrange, 1e-9 * s_total_, s_total_ * (1.0 - 1e-9), 1e-9 * s_total_, 60, f_tol);
+  if (to_status(root.status) == Status::kNoBracket) {
     // The quadrant rule (fig. 7.20) picks the first turn from the heading offset alone; after
     // a long wings-level descent (or with a large offset) the one-reversal solution may need
     // the opposite first turn. Try it once before reporting that no reversal exists.
     sign0_ = -sign0_;
-    root = brent_root(crossrange, 1e-9 * s_total_, s_total_ * (1.0 - 1e-9), 1e-9 * s_total_, f_tol, 60);
-    if (root.status != Status::kOk) sign0_ = -sign0_;
+    root = numerics::brent(crossrange, 1e-9 * s_total_, s_total_ * (1.0 - 1e-9), 1e-9 * s_total_, 60, f_tol);
+    if (to_status(root.status) != Status::kOk) sign0_ = -sign0_;
     diag_.initial_bank_sign = sign0_;
   }
   diag_.reversal_evaluations += evaluations;
-  if (root.status == Status::kNoBracket) {
+  if (to_status(root.status) == Status::kNoBracket) {
     // No single reversal nulls the crossrange (typically just after a flown reversal, when
     // the remaining turn is short). Best effort: the smallest crossrange of no reversal and
     // the interval ends; accepted when it is a small fraction of the range to go, which the
@@ -542,7 +542,7 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
     }
     if (!(best_abs < kBestEffortCrossrangeFraction * diag_.b_mission_rad)) {
       lateral_unreachable_ = true;
-      return root.status;
+      return to_status(root.status);
     }
     s_rev = best_s;
     s = integrate(s_rev, false, end);
@@ -553,7 +553,7 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
     diag_.reversal_best_effort = true;
     return Status::kOk;
   }
-  if (root.status != Status::kOk) return root.status;
+  if (to_status(root.status) != Status::kOk) return to_status(root.status);
   s_rev = root.x;
   s = integrate(s_rev, false, end);
   if (s != Status::kOk) return s;
