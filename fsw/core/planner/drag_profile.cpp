@@ -42,7 +42,7 @@ Status ThreeSegmentProfile::solve_constant_drag(double s_m, double dc_min, doubl
     return s_m - trial.length_m();
   };
   const numerics::RootResult root = numerics::brent(residual, std::log(dc_min), std::log(dc_max), 1e-12, 100, 1e-6);
-  if (to_status(root.status) != Status::kOk) return to_status(root.status);
+  if (root.status != numerics::NumStatus::kOk) return to_status(root.status);
   d_c = std::exp(root.x);
   return valid() ? Status::kOk : Status::kNonFinite;
 }
@@ -107,7 +107,7 @@ Status SmoothProfile::solve_level(double s_m, double dc_min, double dc_max) {
     return s_m - trial.length_m();
   };
   const numerics::RootResult root = numerics::brent(residual, std::log(dc_min), std::log(dc_max), 1e-12, 100, 1e-6);
-  if (to_status(root.status) != Status::kOk) return to_status(root.status);
+  if (root.status != numerics::NumStatus::kOk) return to_status(root.status);
   d_c = std::exp(root.x);
   return valid() ? Status::kOk : Status::kNonFinite;
 }

@@ -161,12 +161,13 @@ Status EntryPlanner::equilibrium_glide_radius() {
       return models_.lift_mps2(alpha, h, v) - (gravity_mps2(r) - v * v / r);
     };
     const numerics::RootResult root = numerics::brent(residual, 0.0, h_top, 1.0, kRootIterations);
-    if (to_status(root.status) == Status::kOk || to_status(root.status) == Status::kMaxIterations) {
+    const Status st = to_status(root.status);
+    if (st == Status::kOk || st == Status::kMaxIterations) {
       r_[k] = kEarthRadius_m + root.x;
-    } else if (to_status(root.status) == Status::kNoBracket && residual(h_top) > 0.0) {
+    } else if (st == Status::kNoBracket && residual(h_top) > 0.0) {
       r_[k] = kEarthRadius_m + h_top;  // lift exceeds the need everywhere: highest admissible point
     } else {
-      return to_status(root.status) == Status::kNoBracket ? Status::kExtractionFailed : to_status(root.status);
+      return st == Status::kNoBracket ? Status::kExtractionFailed : st;
     }
   }
   return Status::kOk;
@@ -301,8 +302,9 @@ Status EntryPlanner::extract() {
       return models_.drag_mps2(alpha, h, velocity_from_energy_mps(energy, kEarthRadius_m + h)) - drag;
     };
     const numerics::RootResult root = numerics::brent(residual, 0.0, h_top, 0.05, kRootIterations);
-    if (to_status(root.status) == Status::kNoBracket) return Status::kExtractionFailed;
-    if (to_status(root.status) != Status::kOk && to_status(root.status) != Status::kMaxIterations) return to_status(root.status);
+    const Status st = to_status(root.status);
+    if (st == Status::kNoBracket) return Status::kExtractionFailed;
+    if (st != Status::kOk && st != Status::kMaxIterations) return st;
     const double h = root.x;
     r_[k] = kEarthRadius_m + h;
     v_[k] = velocity_from_energy_mps(energy, r_[k]);
@@ -515,24 +517,27 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
   };
   const double f_tol = 0.25 * crossrange_tol_m_ / r_mean_;
   // Reversal range from (just after) the planning point to the end; secant/Brent on a2.
-  numerics::RootResult root = numerics::brent(crossrange, 1e-9 * s_total_, s_total_ * (1.0 - 1e-9), 1e-9 * s_total_, 60, f_tol);
-  if (to_status(root.status) == Status::kNoBracket) {
+  const double s_lo = 1e-9 * s_total_, s_hi = s_total_ * (1.0 - 1e-9);
+  numerics::RootResult root = numerics::brent(crossrange, s_lo, s_hi, 1e-9 * s_total_, 60, f_tol);
+  Status st = to_status(root.status);
+  if (st == Status::kNoBracket) {
     // The quadrant rule (fig. 7.20) picks the first turn from the heading offset alone; after
     // a long wings-level descent (or with a large offset) the one-reversal solution may need
     // the opposite first turn. Try it once before reporting that no reversal exists.
     sign0_ = -sign0_;
-    root = numerics::brent(crossrange, 1e-9 * s_total_, s_total_ * (1.0 - 1e-9), 1e-9 * s_total_, 60, f_tol);
-    if (to_status(root.status) != Status::kOk) sign0_ = -sign0_;
+    root = numerics::brent(crossrange, s_lo, s_hi, 1e-9 * s_total_, 60, f_tol);
+    st = to_status(root.status);
+    if (st != Status::kOk) sign0_ = -sign0_;
     diag_.initial_bank_sign = sign0_;
   }
   diag_.reversal_evaluations += evaluations;
-  if (to_status(root.status) == Status::kNoBracket) {
+  if (st == Status::kNoBracket) {
     // No single reversal nulls the crossrange (typically just after a flown reversal, when
     // the remaining turn is short). Best effort: the smallest crossrange of no reversal and
     // the interval ends; accepted when it is a small fraction of the range to go, which the
     // lateral corridor phase steers out, since a stale plan would be worse.
     double best_s = 2.0 * s_total_, best_abs = std::fabs(base.crossrange_rad);
-    const double ends[2] = {1e-9 * s_total_, s_total_ * (1.0 - 1e-9)};
+    const double ends[2] = {s_lo, s_hi};
     for (double s_end : ends) {
       const double c = crossrange(s_end);
       if (std::isfinite(c) && std::fabs(c) < best_abs) {
@@ -542,7 +547,7 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
     }
     if (!(best_abs < kBestEffortCrossrangeFraction * diag_.b_mission_rad)) {
       lateral_unreachable_ = true;
-      return to_status(root.status);
+      return st;
     }
     s_rev = best_s;
     s = integrate(s_rev, false, end);
@@ -553,7 +558,7 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
     diag_.reversal_best_effort = true;
     return Status::kOk;
   }
-  if (to_status(root.status) != Status::kOk) return to_status(root.status);
+  if (st != Status::kOk) return st;
   s_rev = root.x;
   s = integrate(s_rev, false, end);
   if (s != Status::kOk) return s;
