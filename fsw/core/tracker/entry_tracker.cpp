@@ -113,11 +113,7 @@ Status EntryTracker::init(const config::Mission& mission) {
   const double e_taem_norm = taem_energy_Jpkg_ / entry_energy_Jpkg_;
   terminal_e_norm_ = e_taem_norm + kTerminalSpanFraction * (1.0 - e_taem_norm);
   lateral_e_norm_ = e_taem_norm + kLateralCorridorSpanFraction * (1.0 - e_taem_norm);
-  taem_heading_rad_ = mission.taem.heading_rad;
-  taem_velocity_mps_ = mission.taem.velocity_mps;
   taem_ = mission.taem;
-  aim_lat_rad_ = mission.taem.latitude_rad;
-  aim_lon_rad_ = mission.taem.longitude_rad;
   initial_descent_drag_mps2_ = mission.guidance.initial_descent_drag_mps2;
   sigma_rate_max_radps_ = mission.constraints.sigma_rate_max_radps;
   alpha_max_rad_ = mission.constraints.alpha_max_rad;
@@ -202,12 +198,13 @@ EntryTracker::LateralTarget EntryTracker::lateral_target(const RelativeState& s)
   // so the vehicle converges on the line and arrives along it, on chi_f (the heading is
   // targeted explicitly instead of following from the last reversal).
   LateralTarget t;
-  const GreatCircle to_aim = great_circle(s.latitude_rad, s.longitude_rad, aim_lat_rad_, aim_lon_rad_);  // (7.1)-(7.2)
+  const double aim_lat = taem_.latitude_rad, aim_lon = taem_.longitude_rad;
+  const GreatCircle to_aim = great_circle(s.latitude_rad, s.longitude_rad, aim_lat, aim_lon);  // (7.1)-(7.2)
   t.range_m = kEarthRadius_m * to_aim.arc_rad;
   t.bearing_rad = to_aim.azimuth_rad;
   if (t.range_m > kAimMinRange_m) {
-    const double back = great_circle(aim_lat_rad_, aim_lon_rad_, s.latitude_rad, s.longitude_rad).azimuth_rad;
-    t.offset_rad = wrap_pi(back - (taem_heading_rad_ + M_PI));
+    const double back = great_circle(aim_lat, aim_lon, s.latitude_rad, s.longitude_rad).azimuth_rad;
+    t.offset_rad = wrap_pi(back - (taem_.heading_rad + M_PI));
   }
   const double cross_track_m = t.range_m * std::sin(t.offset_rad);
   t.heading_rad = wrap_pi(t.bearing_rad - t.offset_rad +
@@ -669,7 +666,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
       // vehicle arrives on the target heading (a corridor reversal this late would leave it
       // mid-swing).
       const double turn_rate = s.lift_mps2 * std::sin(mean_sigma_d_rad_) / (V * cg);
-      const double v_f = std::fmin(taem_velocity_mps_, 0.99 * V);
+      const double v_f = std::fmin(taem_.velocity_mps, 0.99 * V);
       auto speed_at = [&](double t) { return V - (V - v_f) * clamp(t / t_go_s, 0.0, 1.0); };
       auto turned = [&](double t1, double t2) {
         return turn_rate * V * t_go_s / (V - v_f) * std::log(speed_at(t1) / speed_at(t2));

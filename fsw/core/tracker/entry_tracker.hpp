@@ -157,10 +157,6 @@ class EntryTracker {
   double load_factor_max_mps2_ = 0.0;
   double q_ref_Pa_ = 1.0;
   double terminal_e_norm_ = 0.0;    // terminal phase below this normalised energy
-  double aim_lat_rad_ = 0.0;        // TAEM aim point
-  double aim_lon_rad_ = 0.0;
-  double taem_heading_rad_ = 0.0;   // required arrival heading
-  double taem_velocity_mps_ = 0.0;  // TAEM interface speed
   double lateral_e_norm_ = 0.0;     // lateral heading corridor below this normalised energy
   bool initialised_ = false;
 
@@ -178,7 +174,7 @@ class EntryTracker {
   double flown_alpha_rad_ = -1.0;   // alpha out of the rate filter (< 0: attitude not given)
   double flown_sigma_rad_ = 0.0;    // bank out of the rate filter (given with the alpha)
   double mean_sigma_d_rad_ = -1.0;  // bank magnitude averaged for the final reversal (< 0: unset)
-  config::TaemInterface taem_{};    // TAEM interface and bands (mission)
+  config::TaemInterface taem_{};    // TAEM aim point, arrival heading, speed and bands (mission)
   bool final_reversal_done_ = false;
   int last_sign_ = 0;
   double reversal_until_t_s_ = -1.0;
