@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "dynamics/open_loop.hpp"
 #include "guidance/guidance_stack.hpp"
@@ -11,16 +12,26 @@
 
 namespace reentry::tools {
 
-PulloutBound wings_level_pullout_bound(const config::Mission& mission, std::uint64_t seed, bool dispersed) {
-  PulloutBound b;
+namespace {
+// The truth simulator of run `seed`: dispersed runs draw from the mission's [dispersions]. The
+// closed loop and its pull-out bound fly the same draw.
+std::unique_ptr<truth::Simulator> make_run_simulator(const config::Mission& mission, std::uint64_t seed,
+                                                     bool dispersed, truth::DispersionDraw* draw,
+                                                     std::string* error) {
   truth::SimOverrides ov;
   if (dispersed) ov.dispersion = truth::draw_dispersions(mission.dispersions, seed);
-  std::string err;
-  auto sim = truth::Simulator::create(mission, ov, &err);
-  if (!sim) {
-    b.error = "simulator: " + err;
-    return b;
-  }
+  *draw = ov.dispersion;
+  auto sim = truth::Simulator::create(mission, ov, error);
+  if (!sim) *error = "simulator: " + *error;
+  return sim;
+}
+}  // namespace
+
+PulloutBound wings_level_pullout_bound(const config::Mission& mission, std::uint64_t seed, bool dispersed) {
+  PulloutBound b;
+  truth::DispersionDraw draw;
+  auto sim = make_run_simulator(mission, seed, dispersed, &draw, &b.error);
+  if (!sim) return b;
   b.maxima = truth::wings_level_pullout_maxima(*sim, mission.constraints.alpha_max_rad);
   b.exceeded = truth::path_constraint_violations(mission.constraints, b.maxima);
   return b;
@@ -32,17 +43,10 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
   ClosedLoopResult r;
   r.seed = seed;
   r.dispersed = dispersed;
-  truth::SimOverrides ov;
-  if (dispersed) ov.dispersion = truth::draw_dispersions(mission.dispersions, seed);
-  r.dispersion = ov.dispersion;
-  std::string err;
-  auto sim = truth::Simulator::create(mission, ov, &err);
-  if (!sim) {
-    r.error = "simulator: " + err;
-    return r;
-  }
+  auto sim = make_run_simulator(mission, seed, dispersed, &r.dispersion, &r.error);
+  if (!sim) return r;
   fsw::GuidanceStack stack;
-  err = stack.create(mission, fsw::exec::PlanMode::kSynchronous);
+  const std::string err = stack.create(mission, fsw::exec::PlanMode::kSynchronous);
   if (!err.empty()) {
     r.error = "guidance: " + err;
     return r;
