@@ -45,6 +45,20 @@ TEST(ClosedLoop, HorusNominalReachesTaemWithinEveryTolerance) {
   EXPECT_LT(std::fabs(r.verdict.altitude_err_m), m.taem.altitude_tol_m);
 }
 
+TEST(ClosedLoop, X38NominalReachesTaemWithinEveryTolerance) {
+  // The X-38 is 120 km off the arrival line when the heading corridor starts and turns at
+  // about 0.1 deg/s: the corridor's approach angle is bounded by the turn it can make
+  // (without the bound it crossed the line 16 deg off and missed by 12.9 km, 12 deg off).
+  const config::Mission m = load("x38");
+  const tools::ClosedLoopResult r = tools::run_closed_loop(m, 1, false);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.summary.event, truth::SimEvent::kTaemEnergy);
+  for (const auto& v : r.verdict.violations) ADD_FAILURE() << "violation: " << v;
+  EXPECT_TRUE(r.verdict.success);
+  EXPECT_LT(std::fabs(r.verdict.heading_err_rad), m.taem.heading_tol_rad);
+  EXPECT_LT(std::fabs(r.verdict.altitude_err_m), m.taem.altitude_tol_m);
+}
+
 TEST(PlannedAlpha, ProfileCoversTheEnergyRangeMonotoneWithinAlphaMax) {
   config::Mission m = load("x33_planned_alpha");
   ASSERT_TRUE(m.alpha_profile_planned);
