@@ -286,6 +286,33 @@ TEST(Tracker, WingsLevelPullOutDragMatchesNumericalIntegration) {
   EXPECT_EQ(wings_level_pullout_drag_mps2(d0, 0.0, -100.0, g_eff, H), kNoPullOut_mps2);
 }
 
+TEST(Tracker, ShallowPullOutAboveCircularSpeedMatchesNumericalIntegration) {
+  // A shallow eastbound entry: faster than circular (g_eff < 0, the vehicle is held up even
+  // without lift) or with lift below g_eff at first (L/D D0 < g_eff). The vertical energy
+  // balance still has one root; the fixed-point iteration used before diverged there and
+  // reported no pull-out (seed 27 of the X-33 campaign flew lift up into a 93 km skip).
+  // Independent truth: RK4 of h'' = (L/D) D0 exp(-(h - h0) / H) - g_eff to h' = 0.
+  const double H = 6000.0, lod = 1.2;
+  struct Case { double g_eff, d0, h_dot0; };
+  for (const Case c : {Case{-0.5, 0.05, -86.6}, Case{-0.2, 0.02, -40.0}, Case{0.9, 0.05, -86.6}, Case{0.3, 0.1, -200.0}}) {
+    double h = 0.0, v = c.h_dot0;
+    const double dt = 1e-3;
+    auto acc = [&](double hh) { return lod * c.d0 * std::exp(-hh / H) - c.g_eff; };
+    for (int i = 0; i < 100000000 && v < 0.0; ++i) {
+      const double k1h = v, k1v = acc(h);
+      const double k2h = v + 0.5 * dt * k1v, k2v = acc(h + 0.5 * dt * k1h);
+      const double k3h = v + 0.5 * dt * k2v, k3v = acc(h + 0.5 * dt * k2h);
+      const double k4h = v + dt * k3v, k4v = acc(h + dt * k3h);
+      h += dt / 6.0 * (k1h + 2.0 * k2h + 2.0 * k3h + k4h);
+      v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+    }
+    const double d_bottom = c.d0 * std::exp(-h / H);
+    const double predicted = wings_level_pullout_drag_mps2(c.d0, lod, c.h_dot0, c.g_eff, H);
+    EXPECT_LT(predicted, kNoPullOut_mps2) << c.g_eff << " " << c.d0;
+    EXPECT_NEAR(predicted, d_bottom, 1e-4 * d_bottom) << c.g_eff << " " << c.d0;
+  }
+}
+
 TEST(Tracker, PullOutAfterARollIsBoundedByNumericalIntegration) {
   // Independent truth: RK4 of h'' = (L/D) D0 exp(-(h - h0) / H) cos(sigma(t)) - g_eff with
   // the bank rolled uniformly from sigma0 to 0 over t_roll, then wings level to the bottom.

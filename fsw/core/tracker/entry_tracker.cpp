@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "numerics/root_finding.hpp"
 #include "planner/mission_geometry.hpp"
 #include "reentry/config/mission.hpp"
 
@@ -381,20 +382,26 @@ void EntryTracker::update_drag_scale(const RelativeState& s, double alpha_rad, d
 double wings_level_pullout_drag_mps2(double drag_mps2, double lift_over_drag, double h_dot_mps, double g_eff_mps2,
                                      double scale_height_m) {
   // Vertical energy balance of a wings-level pull-out, speed held, rho ~ exp(-h / H):
-  //   h_dot^2 / 2 = (L/D) H (D_p - D) - g_eff H ln(D_p / D),  g_eff = g - V_h^2 / r,
-  // solved for D_p by fixed-point iteration (bounded; the map contracts while L/D D_p > g_eff).
+  //   f(D_p) = (L/D) H (D_p - D) - g_eff H ln(D_p / D) - h_dot^2 / 2 = 0,  g_eff = g - V_h^2 / r.
+  // f(D) < 0 and f grows without bound: f falls while (L/D) D_p < g_eff, then rises, so the
+  // root above D is unique. Bracketed (doubling) and solved by Brent's method; a fixed-point
+  // iteration on the same balance diverged where g_eff < 0 (an eastbound entry above circular
+  // speed) or (L/D) D < g_eff, and reported no pull-out for a shallow entry that pulls out high.
   const double D = drag_mps2;
   if (!(h_dot_mps < 0.0) || !(D > 0.0)) return D;
-  if (!(lift_over_drag > 0.0) || !(scale_height_m > 0.0)) return kNoPullOut_mps2;
-  double d_p = D;
-  for (int i = 0; i < 50; ++i) {
-    const double next =
-        D + (0.5 * h_dot_mps * h_dot_mps + g_eff_mps2 * scale_height_m * std::log(d_p / D)) / (lift_over_drag * scale_height_m);
-    if (!(next > 0.0) || !std::isfinite(next) || next > kNoPullOut_mps2) return kNoPullOut_mps2;
-    if (std::fabs(next - d_p) < 1e-6 * d_p) return next;
-    d_p = next;
+  if (!(lift_over_drag > 0.0) || !(scale_height_m > 0.0) || !std::isfinite(g_eff_mps2)) return kNoPullOut_mps2;
+  const double kinetic = 0.5 * h_dot_mps * h_dot_mps;
+  auto balance = [&](double d_p) {
+    return lift_over_drag * scale_height_m * (d_p - D) - g_eff_mps2 * scale_height_m * std::log(d_p / D) - kinetic;
+  };
+  double hi = D + kinetic / (lift_over_drag * scale_height_m);  // the root without gravity
+  for (int i = 0; i < 64 && balance(hi) <= 0.0; ++i) {
+    if (hi > kNoPullOut_mps2) return kNoPullOut_mps2;
+    hi *= 2.0;
   }
-  return d_p;
+  if (!(balance(hi) > 0.0)) return kNoPullOut_mps2;
+  const numerics::RootResult root = numerics::brent(balance, D, hi, 1e-9 * D, 100);
+  return root.status == numerics::NumStatus::kOk && root.x <= kNoPullOut_mps2 ? root.x : kNoPullOut_mps2;
 }
 
 double pullout_drag_after_roll_mps2(double drag_mps2, double lift_over_drag, double h_dot_mps, double g_eff_mps2,
