@@ -262,22 +262,34 @@ TEST(Tracker, InitialDescentHoldsProfileAlphaWingsLevelAndNeverEmitsNaN) {
   EXPECT_EQ(t.step(s, 0.0, out), Status::kInvalidInput);
 }
 
+namespace {
+// Independent truth for the pull-out predictors: RK4 (1 ms) of the vertical motion
+// h'' = accel(t, h) from a sink rate h_dot0 at h = 0 until h' = 0 after t_min; returns the
+// lowest altitude (negative, below the start).
+template <class Accel>
+double rk4_pullout_bottom_m(Accel accel, double h_dot0, double t_min = 0.0) {
+  double h = 0.0, v = h_dot0, t = 0.0;
+  const double dt = 1e-3;
+  for (int i = 0; i < 100000000 && (v < 0.0 || t < t_min); ++i) {
+    const double k1h = v, k1v = accel(t, h);
+    const double k2h = v + 0.5 * dt * k1v, k2v = accel(t + 0.5 * dt, h + 0.5 * dt * k1h);
+    const double k3h = v + 0.5 * dt * k2v, k3v = accel(t + 0.5 * dt, h + 0.5 * dt * k2h);
+    const double k4h = v + dt * k3v, k4v = accel(t + dt, h + dt * k3h);
+    h += dt / 6.0 * (k1h + 2.0 * k2h + 2.0 * k3h + k4h);
+    v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+    t += dt;
+    if (t >= t_min && v >= 0.0) break;
+  }
+  return h;
+}
+}  // namespace
+
 TEST(Tracker, WingsLevelPullOutDragMatchesNumericalIntegration) {
   // Independent truth: RK4 integration of h'' = (L/D) D0 exp(-(h - h0) / H) - g_eff from a
   // sink rate to the bottom of the pull-out (h' = 0), the drag read there.
   const double H = 7000.0, lod = 0.9, g_eff = 0.9, d0 = 0.5;
   for (double h_dot0 : {-50.0, -150.0, -250.0}) {
-    double h = 0.0, v = h_dot0;
-    const double dt = 1e-3;
-    auto acc = [&](double hh) { return lod * d0 * std::exp(-hh / H) - g_eff; };
-    for (int i = 0; i < 10000000 && v < 0.0; ++i) {
-      const double k1h = v, k1v = acc(h);
-      const double k2h = v + 0.5 * dt * k1v, k2v = acc(h + 0.5 * dt * k1h);
-      const double k3h = v + 0.5 * dt * k2v, k3v = acc(h + 0.5 * dt * k2h);
-      const double k4h = v + dt * k3v, k4v = acc(h + dt * k3h);
-      h += dt / 6.0 * (k1h + 2.0 * k2h + 2.0 * k3h + k4h);
-      v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
-    }
+    const double h = rk4_pullout_bottom_m([&](double, double hh) { return lod * d0 * std::exp(-hh / H) - g_eff; }, h_dot0);
     const double d_bottom = d0 * std::exp(-h / H);
     EXPECT_NEAR(wings_level_pullout_drag_mps2(d0, lod, h_dot0, g_eff, H), d_bottom, 1e-4 * d_bottom) << h_dot0;
   }
@@ -295,17 +307,8 @@ TEST(Tracker, ShallowPullOutAboveCircularSpeedMatchesNumericalIntegration) {
   const double H = 6000.0, lod = 1.2;
   struct Case { double g_eff, d0, h_dot0; };
   for (const Case c : {Case{-0.5, 0.05, -86.6}, Case{-0.2, 0.02, -40.0}, Case{0.9, 0.05, -86.6}, Case{0.3, 0.1, -200.0}}) {
-    double h = 0.0, v = c.h_dot0;
-    const double dt = 1e-3;
-    auto acc = [&](double hh) { return lod * c.d0 * std::exp(-hh / H) - c.g_eff; };
-    for (int i = 0; i < 100000000 && v < 0.0; ++i) {
-      const double k1h = v, k1v = acc(h);
-      const double k2h = v + 0.5 * dt * k1v, k2v = acc(h + 0.5 * dt * k1h);
-      const double k3h = v + 0.5 * dt * k2v, k3v = acc(h + 0.5 * dt * k2h);
-      const double k4h = v + dt * k3v, k4v = acc(h + dt * k3h);
-      h += dt / 6.0 * (k1h + 2.0 * k2h + 2.0 * k3h + k4h);
-      v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
-    }
+    const double h =
+        rk4_pullout_bottom_m([&](double, double hh) { return lod * c.d0 * std::exp(-hh / H) - c.g_eff; }, c.h_dot0);
     const double d_bottom = c.d0 * std::exp(-h / H);
     const double predicted = wings_level_pullout_drag_mps2(c.d0, lod, c.h_dot0, c.g_eff, H);
     EXPECT_LT(predicted, kNoPullOut_mps2) << c.g_eff << " " << c.d0;
@@ -322,22 +325,11 @@ TEST(Tracker, PullOutAfterARollIsBoundedByNumericalIntegration) {
   for (double sigma0_deg : {45.0, 90.0, 135.0, 180.0}) {
     for (double h_dot0 : {-60.0, -150.0}) {
       const double sigma0 = sigma0_deg * M_PI / 180.0, t_roll = sigma0_deg / 10.0;  // 10 deg/s
-      double h = 0.0, v = h_dot0, t = 0.0;
-      const double dt = 1e-3;
       auto acc = [&](double tt, double hh) {
         const double sigma = tt < t_roll ? sigma0 * (1.0 - tt / t_roll) : 0.0;
         return lod * d0 * std::exp(-hh / H) * std::cos(sigma) - g_eff;
       };
-      for (int i = 0; i < 10000000 && (v < 0.0 || t < t_roll); ++i) {
-        const double k1h = v, k1v = acc(t, h);
-        const double k2h = v + 0.5 * dt * k1v, k2v = acc(t + 0.5 * dt, h + 0.5 * dt * k1h);
-        const double k3h = v + 0.5 * dt * k2v, k3v = acc(t + 0.5 * dt, h + 0.5 * dt * k2h);
-        const double k4h = v + dt * k3v, k4v = acc(t + dt, h + dt * k3h);
-        h += dt / 6.0 * (k1h + 2.0 * k2h + 2.0 * k3h + k4h);
-        v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
-        t += dt;
-        if (t >= t_roll && v >= 0.0) break;
-      }
+      const double h = rk4_pullout_bottom_m(acc, h_dot0, t_roll);
       const double d_bottom = d0 * std::exp(-h / H);  // lowest point: v = 0 after the roll
       const double predicted = pullout_drag_after_roll_mps2(d0, lod, h_dot0, g_eff, H, sigma0, t_roll);
       std::printf("sigma0 %.0f h_dot %.0f: predicted %.4f integrated %.4f\n", sigma0_deg, h_dot0, predicted, d_bottom);
