@@ -399,7 +399,7 @@ double wings_level_pullout_drag_mps2(double drag_mps2, double lift_over_drag, do
     if (hi > kNoPullOut_mps2) return kNoPullOut_mps2;
     hi *= 2.0;
   }
-  if (!(balance(hi) > 0.0)) return kNoPullOut_mps2;
+  // An unbracketed or non-finite balance comes back from brent as a failed status.
   const numerics::RootResult root = numerics::brent(balance, D, hi, 1e-9 * D, 100);
   return root.status == numerics::NumStatus::kOk && root.x <= kNoPullOut_mps2 ? root.x : kNoPullOut_mps2;
 }
