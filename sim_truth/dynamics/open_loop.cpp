@@ -15,6 +15,12 @@ namespace reentry::truth {
 namespace {
 constexpr double kDeg = M_PI / 180.0;
 
+// Command step of open-loop flights: the mission's GNC tick (10 Hz when the mission gives none).
+double gnc_tick_s(const Simulator& sim) {
+  const double rate = sim.mission().guidance.gnc_rate_hz;
+  return 1.0 / (rate > 0.0 ? rate : 10.0);
+}
+
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r\n");
   if (b == std::string::npos) return "";
@@ -114,8 +120,7 @@ bool load_open_loop_profile(const std::string& path, OpenLoopProfile* p, std::st
 
 RunSummary run_open_loop(Simulator& sim, const OpenLoopProfile& profile, double out_dt_s,
                          const std::function<void(const TruthSample&)>& on_sample) {
-  const double rate = sim.mission().guidance.gnc_rate_hz > 0.0 ? sim.mission().guidance.gnc_rate_hz : 10.0;
-  const double tick_s = 1.0 / rate;
+  const double tick_s = gnc_tick_s(sim);
   const double E_entry = sim.entry_energy_Jpkg();
   long long tick = 0, out_index = 1;
   double t_last_out = sim.time_s();
@@ -146,8 +151,7 @@ RunSummary run_open_loop(Simulator& sim, const OpenLoopProfile& profile, double 
 }
 
 RunMaxima wings_level_pullout_maxima(Simulator& sim, double alpha_rad) {
-  const double rate = sim.mission().guidance.gnc_rate_hz > 0.0 ? sim.mission().guidance.gnc_rate_hz : 10.0;
-  const double tick_s = 1.0 / rate;
+  const double tick_s = gnc_tick_s(sim);
   sim.set_command(alpha_rad, 0.0);
   // The climb that follows the pull-out is not part of it: stop at the first gamma >= 0.
   while (!sim.finished() && sim.sample().gamma_rad < 0.0) sim.advance_to(sim.time_s() + tick_s);
