@@ -342,6 +342,53 @@ TEST(Tracker, PullOutAfterARollIsBoundedByNumericalIntegration) {
                    wings_level_pullout_drag_mps2(d0, lod, -100.0, g_eff, H));
 }
 
+TEST(FinalTurn, ConstantBankFollowsTheCircularArc) {
+  // Independent truth: at constant speed and bank the heading error grows at
+  // w = L_h sin(sigma) / V and the cross-track offset follows the arc
+  // y(T) = y0 + (V / w) (cos(psi0 + w T) - cos(psi0)).
+  FinalTurnInput in;
+  in.speed_mps = in.taem_speed_mps = 1500.0;
+  in.t_go_s = 40.0;
+  in.lift_horizontal_mps2 = 15.0;
+  in.sigma_now_rad = in.sigma_end_rad = 60.0 * M_PI / 180.0;
+  in.sigma_rate_radps = 5.0 * M_PI / 180.0;
+  in.heading_err_rad = -0.2;
+  in.cross_track_m = 3000.0;
+  const double w = in.lift_horizontal_mps2 * std::sin(in.sigma_now_rad) / in.speed_mps;
+  const FinalTurnState f = predict_final_turn(in);
+  EXPECT_NEAR(f.heading_err_rad, -0.2 + w * 40.0, 1e-12);
+  EXPECT_NEAR(f.cross_track_m, 3000.0 + in.speed_mps / w * (std::cos(-0.2 + w * 40.0) - std::cos(-0.2)), 1.0);
+}
+
+TEST(FinalTurn, DeceleratingTurnAndSymmetricReversalMatchTheirIntegrals) {
+  // Constant bank, speed falling linearly from V0 to V_f over T: the heading turned is
+  // (L_h sin(sigma) / a) ln(V0 / V_f), a = (V0 - V_f) / T.
+  FinalTurnInput in;
+  in.speed_mps = 1500.0;
+  in.taem_speed_mps = 900.0;
+  in.t_go_s = 50.0;
+  in.lift_horizontal_mps2 = 15.0;
+  in.sigma_now_rad = in.sigma_end_rad = -70.0 * M_PI / 180.0;
+  in.sigma_rate_radps = 5.0 * M_PI / 180.0;
+  const double a = (1500.0 - 900.0) / 50.0;
+  const double turned = 15.0 * std::sin(in.sigma_now_rad) / a * std::log(1500.0 / 900.0);
+  EXPECT_NEAR(predict_final_turn(in).heading_err_rad, turned, 1e-4 * std::fabs(turned));
+  // A reversal from sigma0 to -sigma0 at the rate limit, after the lag, lasting the whole
+  // time at constant speed: the bank is antisymmetric about the middle of the roll, so the
+  // heading turned during the lag is all that remains.
+  in.taem_speed_mps = in.speed_mps;
+  in.sigma_now_rad = 60.0 * M_PI / 180.0;
+  in.sigma_end_rad = -in.sigma_now_rad;
+  in.roll_lag_s = 1.0;
+  in.t_go_s = in.roll_lag_s + 2.0 * in.sigma_now_rad / in.sigma_rate_radps;
+  const double lag_turn = 15.0 * std::sin(in.sigma_now_rad) / in.speed_mps * in.roll_lag_s;
+  EXPECT_NEAR(predict_final_turn(in).heading_err_rad, lag_turn, 2e-3 * lag_turn);
+  // Degenerate input leaves the state as it is.
+  in.t_go_s = 0.0;
+  in.heading_err_rad = 0.1;
+  EXPECT_EQ(predict_final_turn(in).heading_err_rad, 0.1);
+}
+
 namespace {
 // A tracker flying mid-profile (captured, level) and the state it was given.
 struct MidProfile {

@@ -57,6 +57,7 @@ constexpr double kCorridorModulationMax_rad = 6.0 * M_PI / 180.0;  // before the
 constexpr double kMinLiftRatio = 0.3;
 constexpr double kAlphaModulationLead_s = 1.0;
 constexpr double kMeanBankTimeConstant_s = 10.0;  // bank averaging for the final-reversal timing
+constexpr int kFinalTurnSteps = 50;                // midpoint steps of the final-turn prediction
 constexpr int kFinalFactorSamples = 20;  // scan of the final-drag factor between 1 and K
 constexpr double kModulationBoundMargin = 0.85;
 constexpr double kDegree_rad = M_PI / 180.0;
@@ -67,7 +68,7 @@ constexpr double kMaxDragScale = 2.0;
 constexpr double kSkipCaptureDragFraction = 0.1;  // of the initial-descent drag (see capture)
 constexpr double kCaptureLookahead = 0.02;  // reference compared at E - 2 % of E_entry (pull-out energy)
 constexpr double kPullOutComplete = 1.05;  // pull-out counted as complete when D would rise < 5 % more
-constexpr double kRollLag_s = 1.0;  // bank filter lag added to the roll time of the pull-out guard
+constexpr double kRollLag_s = 1.0;  // bank filter lag before a roll starts (pull-out guard, final turn)
 constexpr double kMinLodScale = 0.5;   // bounds of the L/D estimate (model / 2 .. model x 1.5)
 constexpr double kMaxLodScale = 1.5;
 constexpr double kEarthFlattening = 1.0 / 298.257223563;  // WGS-84
@@ -227,6 +228,11 @@ EntryTracker::LateralTarget EntryTracker::lateral_target(const RelativeState& s)
   t.heading_rad = wrap_pi(t.bearing_rad - t.offset_rad + std::copysign(approach_rad, cross_track_m));
   t.along_track_m = t.range_m * std::cos(t.offset_rad);
   return t;
+}
+
+double EntryTracker::flown_bank_rad() const {
+  // The rate filter's output when the stack provides it, else the tracker's own last command.
+  return flown_alpha_rad_ >= 0.0 ? flown_sigma_rad_ : last_sign_ * last_sigma_d_rad_;
 }
 
 EntryTracker::TerminalRange EntryTracker::terminal_range(double energy, double drag_here, double e_t,
@@ -415,6 +421,24 @@ double pullout_drag_after_roll_mps2(double drag_mps2, double lift_over_drag, dou
     drag *= std::exp(std::fmin(-dh / scale_height_m, 5.0));  // bounded: e^5 is far past any limit
   }
   return wings_level_pullout_drag_mps2(drag, lift_over_drag, h_dot, g_eff_mps2, scale_height_m);
+}
+
+FinalTurnState predict_final_turn(const FinalTurnInput& in) {
+  // Midpoint rule over kFinalTurnSteps steps (bounded).
+  FinalTurnState out{in.heading_err_rad, in.cross_track_m};
+  if (!(in.t_go_s > 0.0) || !(in.speed_mps > 0.0)) return out;
+  const double h = in.t_go_s / kFinalTurnSteps;
+  const double v_f = std::fmin(in.taem_speed_mps, in.speed_mps);
+  for (int i = 0; i < kFinalTurnSteps; ++i) {
+    const double t = (i + 0.5) * h;
+    const double speed = in.speed_mps - (in.speed_mps - v_f) * t / in.t_go_s;
+    const double roll = in.sigma_rate_radps * std::fmax(t - in.roll_lag_s, 0.0);
+    const double sigma = in.sigma_now_rad + clamp(in.sigma_end_rad - in.sigma_now_rad, -roll, roll);
+    const double turn = in.lift_horizontal_mps2 * std::sin(sigma) / speed * h;
+    out.cross_track_m -= speed * std::sin(out.heading_err_rad + 0.5 * turn) * h;
+    out.heading_err_rad += turn;
+  }
+  return out;
 }
 
 double EntryTracker::lift_up_pullout_drag_mps2(const RelativeState& s, double sigma_now_rad) const {
@@ -677,27 +701,40 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     const double e_taem_norm = taem_energy_Jpkg_ / entry_energy_Jpkg_;
     const double x = clamp((e_norm - e_taem_norm) / (lateral_e_norm_ - e_taem_norm), 0.0, 1.0);
     const double corridor = kCorridorMin_rad + (kCorridorMax_rad - kCorridorMin_rad) * x;
-    const double t_go_s = (s.energy_Jpkg - taem_energy_Jpkg_) / std::fmax(D * V, 1e-6);  // E' = -D V
+    // Time to TAEM at the present drag with the speed falling linearly to the TAEM speed
+    // (E' = -D V): with the present speed instead, t_go came out 25-35 % short (X-33: 40 s
+    // predicted, 54 s flown), the final reversal was timed for a turn that short and the
+    // vehicle arrived 5-12 deg past the line.
+    const double v_f = std::fmin(taem_.velocity_mps, V);
+    const double t_go_s = (s.energy_Jpkg - taem_energy_Jpkg_) / std::fmax(D * 0.5 * (V + v_f), 1e-6);
     sign_ref = last_sign_;
     if (t_go_s < kFinalReversalWindow * t_rev_mean_s) {
-      // Final reversal timing: the turn rate w = L sin|sigma| / (V cos gamma) grows as 1/V
-      // while V falls (about linearly in time) to the TAEM speed, so the heading turned over
-      // [t1, t2] is W(t1, t2) = w V t_go / (V - V_f) ln(V(t1) / V(t2)). A symmetric reversal
-      // started now turns s W(0, t_rev/2) and then -s W(t_rev/2, t_go): the one last
-      // reversal starts when the heading error at TAEM it leads to reaches zero, so that the
-      // vehicle arrives on the target heading (a corridor reversal this late would leave it
-      // mid-swing).
-      const double turn_rate = s.lift_mps2 * std::sin(mean_sigma_d_rad_) / (V * cg);
-      const double v_f = std::fmin(taem_.velocity_mps, 0.99 * V);
-      auto speed_at = [&](double t) { return V - (V - v_f) * clamp(t / t_go_s, 0.0, 1.0); };
-      auto turned = [&](double t1, double t2) {
-        return turn_rate * V * t_go_s / (V - v_f) * std::log(speed_at(t1) / speed_at(t2));
-      };
-      const double half_rev_s = std::fmin(0.5 * t_rev_mean_s, t_go_s);
+      // The one last reversal starts when the TAEM state it leads to is balanced between
+      // heading error and cross-track offset (a corridor reversal this late would leave the
+      // vehicle mid-swing); waiting moves both towards the present turn.
+      // The roll from the bank flown to the mean bank magnitude on the other side.
+      FinalTurnInput in;
+      in.speed_mps = V;
+      in.taem_speed_mps = v_f;
+      in.t_go_s = t_go_s;
+      in.lift_horizontal_mps2 = s.lift_mps2 / cg;
+      in.sigma_now_rad = flown_bank_rad();
+      in.sigma_end_rad = -last_sign_ * mean_sigma_d_rad_;
+      in.sigma_rate_radps = sigma_rate_max_radps_;
+      in.roll_lag_s = kRollLag_s;
+      in.heading_err_rad = wrap_pi(chi - (target.bearing_rad - target.offset_rad));
+      in.cross_track_m = target.range_m * std::sin(target.offset_rad);
+      const FinalTurnState turn = predict_final_turn(in);
+      const double cross_weight =
+          taem_.range_tol_m > 0.0 && taem_.heading_tol_rad > 0.0 ? taem_.heading_tol_rad / taem_.range_tol_m : 0.0;
       if (!reversing && !final_reversal_done_ &&
-          last_sign_ * err_to_target + turned(0.0, half_rev_s) - turned(half_rev_s, t_go_s) >= 0.0) {
+          last_sign_ * (turn.heading_err_rad - cross_weight * turn.cross_track_m) >= 0.0) {
         sign_ref = -last_sign_;
         final_reversal_done_ = true;
+        // The drag integral was built up on the range control's pre-reversal reference (it
+        // asks for the drag the reversal's alpha modulation will give back); kept, it held
+        // the bank 15-20 deg above the loop's demand after the roll (X-33: 80 against 62).
+        drag_integral_ = 0.0;
       }
     } else if (!reversing) {
       if (last_sign_ > 0 && err_to_target > corridor) sign_ref = -1;        // right of the target: bank left
@@ -711,9 +748,8 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     reversal_sigma0_rad_ = sigma_d;
   }
   last_sign_ = sign_ref;
-  // Bank flown now (the rate filter's output, else the tracker's own last command), carried
-  // towards the command at the maximum rate for the alpha lag.
-  const double sigma_flown = flown_alpha_rad_ >= 0.0 ? flown_sigma_rad_ : last_sign_ * last_sigma_d_rad_;
+  // Bank flown now, carried towards the command at the maximum rate for the alpha lag.
+  const double sigma_flown = flown_bank_rad();
   const double max_roll_rad = sigma_rate_max_radps_ * kAlphaModulationLead_s;
   const double cos_lead =
       std::cos(sigma_flown + clamp(sign_ref * sigma_d - sigma_flown, -max_roll_rad, max_roll_rad));

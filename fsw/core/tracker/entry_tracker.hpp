@@ -72,6 +72,29 @@ double wings_level_pullout_drag_mps2(double drag_mps2, double lift_over_drag, do
 double pullout_drag_after_roll_mps2(double drag_mps2, double lift_over_drag, double h_dot_mps, double g_eff_mps2,
                                     double scale_height_m, double sigma0_rad, double t_roll_s);
 
+/// Heading and cross-track motion relative to a straight arrival line over the last seconds
+/// before TAEM, for the final-reversal timing. The bank rolls from sigma_now to sigma_end at
+/// sigma_rate after roll_lag; the heading error psi turns at L_h sin(sigma) / V (L_h: lift
+/// over cos gamma), the cross-track offset y (> 0: the line is to the right) moves at
+/// -V sin(psi), and V falls linearly from speed to taem_speed over t_go.
+struct FinalTurnInput {
+  double speed_mps = 0.0;
+  double taem_speed_mps = 0.0;
+  double t_go_s = 0.0;
+  double lift_horizontal_mps2 = 0.0;
+  double sigma_now_rad = 0.0;
+  double sigma_end_rad = 0.0;
+  double sigma_rate_radps = 0.0;
+  double roll_lag_s = 0.0;
+  double heading_err_rad = 0.0;  // heading minus the line's
+  double cross_track_m = 0.0;
+};
+struct FinalTurnState {
+  double heading_err_rad = 0.0;
+  double cross_track_m = 0.0;
+};
+FinalTurnState predict_final_turn(const FinalTurnInput& in);
+
 /// The documented gain rule (no per-vehicle tuning):
 ///  - omega0 = 2 sqrt(g0 / H), twice the natural frequency sqrt(g/H) of the altitude mode of a
 ///    glide in an atmosphere of scale height H = 7050 m (about 0.075 rad/s, period 85 s): fast
@@ -130,6 +153,7 @@ class EntryTracker {
     double along_track_m = 0.0; // range to go along the arrival line (< 0: aim point passed)
   };
   LateralTarget lateral_target(const RelativeState& s) const;
+  double flown_bank_rad() const;
   bool modulation_allowed(double drag_ref, double drag_max) const;
   double modulated_alpha(double alpha_rad, double mach, double lift_ratio, double max_rad) const;
   double load_relief_alpha(double alpha_cmd_rad, double alpha_floor_rad, double alpha_flown_rad, double mach,
