@@ -64,6 +64,9 @@ struct RelativeState {
   double lift_over_drag_scale = 1.0;  // sensed L/D over the on-board model's, filtered (1: model)
 };
 
+/// x bounded to [lo, hi] (lo <= hi); a NaN passes through (the callers check finiteness).
+inline double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
+
 /// Planned fraction of every path-constraint limit (3 % design margin): the planner's
 /// corridor bounds and the tracker's sensed-constraint drag limiter use the same fraction.
 inline constexpr double kConstraintMargin = 0.97;

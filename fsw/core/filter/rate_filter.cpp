@@ -3,9 +3,6 @@
 #include <cmath>
 
 namespace reentry::fsw {
-namespace {
-double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
-}  // namespace
 
 Status RateFilter::init(double rate_max, double accel_max, double dt_s) {
   if (!(rate_max > 0.0) || !(accel_max > 0.0) || !(dt_s > 0.0) || !std::isfinite(rate_max) ||

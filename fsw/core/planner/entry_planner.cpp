@@ -36,8 +36,6 @@ bool finite_state(const RelativeState& s) {
          std::isfinite(s.drag_mps2);
 }
 
-double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
-
 }  // namespace
 
 Status EntryPlanner::init(const config::Mission& mission) {

@@ -73,8 +73,6 @@ constexpr double kMinLodScale = 0.5;   // bounds of the L/D estimate (model / 2 
 constexpr double kMaxLodScale = 1.5;
 constexpr double kEarthFlattening = 1.0 / 298.257223563;  // WGS-84
 
-double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
-
 bool finite_state(const RelativeState& s) {
   const double v[] = {s.t_s, s.radius_m, s.altitude_m, s.latitude_rad, s.velocity_mps, s.flight_path_rad,
                       s.heading_rad, s.energy_Jpkg, s.drag_mps2, s.lift_mps2};
