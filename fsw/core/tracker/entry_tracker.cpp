@@ -708,9 +708,10 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     sign_ref = last_sign_;
     if (t_go_s < kFinalReversalWindow * t_rev_mean_s) {
       // The one last reversal starts when the TAEM state it leads to is balanced between
-      // heading error and cross-track offset (a corridor reversal this late would leave the
-      // vehicle mid-swing); waiting moves both towards the present turn.
-      // The roll from the bank flown to the mean bank magnitude on the other side.
+      // heading error and cross-track offset, weighted by the mission's tolerances (a corridor
+      // reversal this late would leave the vehicle mid-swing); waiting moves both towards the
+      // present turn. Predicted with the roll from the bank flown to the mean bank magnitude
+      // on the other side.
       FinalTurnInput in;
       in.speed_mps = V;
       in.taem_speed_mps = v_f;
