@@ -215,15 +215,16 @@ EntryTracker::LateralTarget EntryTracker::lateral_target(const RelativeState& s)
     const double back = great_circle(aim_lat, aim_lon, s.latitude_rad, s.longitude_rad).azimuth_rad;
     t.offset_rad = wrap_pi(back - (taem_.heading_rad + M_PI));
   }
-  const double cross_track_m = t.range_m * std::sin(t.offset_rad);
-  double approach_rad = kApproachAngleMax_rad * (2.0 / M_PI) * std::atan(std::fabs(cross_track_m) / kCrossTrackScale_m);
+  t.cross_track_m = t.range_m * std::sin(t.offset_rad);
+  t.line_heading_rad = t.bearing_rad - t.offset_rad;
+  double approach_rad = kApproachAngleMax_rad * (2.0 / M_PI) * std::atan(std::fabs(t.cross_track_m) / kCrossTrackScale_m);
   const double turn_accel_mps2 = s.lift_mps2 * std::sin(std::fmax(mean_sigma_d_rad_, 0.0));
   if (turn_accel_mps2 > 0.0) {
     const double turn_radius_m = s.velocity_mps * s.velocity_mps * std::cos(s.flight_path_rad) / turn_accel_mps2;
     approach_rad = std::fmin(approach_rad,
-                             std::sqrt(2.0 * kApproachTurnFactor * std::fabs(cross_track_m) / turn_radius_m));
+                             std::sqrt(2.0 * kApproachTurnFactor * std::fabs(t.cross_track_m) / turn_radius_m));
   }
-  t.heading_rad = wrap_pi(t.bearing_rad - t.offset_rad + std::copysign(approach_rad, cross_track_m));
+  t.heading_rad = wrap_pi(t.line_heading_rad + std::copysign(approach_rad, t.cross_track_m));
   t.along_track_m = t.range_m * std::cos(t.offset_rad);
   return t;
 }
@@ -721,8 +722,8 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
       in.sigma_end_rad = -last_sign_ * mean_sigma_d_rad_;
       in.sigma_rate_radps = sigma_rate_max_radps_;
       in.roll_lag_s = kRollLag_s;
-      in.heading_err_rad = wrap_pi(chi - (target.bearing_rad - target.offset_rad));
-      in.cross_track_m = target.range_m * std::sin(target.offset_rad);
+      in.heading_err_rad = wrap_pi(chi - target.line_heading_rad);
+      in.cross_track_m = target.cross_track_m;
       const FinalTurnState turn = predict_final_turn(in);
       const double cross_weight =
           taem_.range_tol_m > 0.0 && taem_.heading_tol_rad > 0.0 ? taem_.heading_tol_rad / taem_.range_tol_m : 0.0;

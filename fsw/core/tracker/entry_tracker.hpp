@@ -151,6 +151,8 @@ class EntryTracker {
     double heading_rad = 0.0;   // heading of the arc that arrives on the required heading
     double offset_rad = 0.0;    // eps: bearing aim->vehicle minus the reversed arrival heading
     double along_track_m = 0.0; // range to go along the arrival line (< 0: aim point passed)
+    double cross_track_m = 0.0; // offset from the arrival line (> 0: the line is to the right)
+    double line_heading_rad = 0.0;  // heading of the arrival line at the vehicle (not wrapped)
   };
   LateralTarget lateral_target(const RelativeState& s) const;
   double flown_bank_rad() const;
