@@ -3,6 +3,7 @@
 // acceleration-limited move, and the closed forms of (3.13) and the documented gain rule.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -670,6 +671,135 @@ TEST(Tracker, FinalDragTakesOnlyThePartOfTheDragRatioTheTaemBandsNeed) {
     EXPECT_NE(k, 1.0);
     EXPECT_NEAR(k, k_exact, std::fabs(K - 1.0) / 20.0 + 1e-3);
     EXPECT_GE(std::fabs(k - 1.0), std::fabs(k_exact - 1.0) - 1e-3);  // never outside the band
+  }
+}
+
+TEST(Tracker, OneCorrectionReversalStopsAFinalTurnThatOvershoots) {
+  // X-33 near TAEM (about 40 s to go at the planned drag, inside the final-reversal window of
+  // two reversals at 5 deg/s) on the planned flight-path angle, on the arrival line (placed by
+  // the spherical destination formula) at the distance where the range control asks for the
+  // planned drag (the plan's range to go (C.2) plus the final reversal's range extension),
+  // the sensed drag then following the reference. Turned 8 deg past the line in the direction
+  // of the bank: the final reversal starts, alpha modulated below the profile. After it,
+  // 10 deg past the line the other way (over-turned): one correction reversal, at the profile
+  // alpha (no modulation seconds before TAEM); a twin still 3 deg short of the line keeps its
+  // bank. A second overshoot gets no further reversal.
+  auto m = mid_profile_tracker(0.0);
+  ASSERT_NE(m, nullptr);
+  const ReferenceProfile& p = *m->profile;
+  const int last = p.n_points - 1;
+  auto t_go = [&](int j) {
+    return (p.energy_Jpkg[j] - p.energy_Jpkg[last]) / (p.drag_mps2[j] * 0.5 * (p.velocity_mps[j] + p.velocity_mps[last]));
+  };
+  int k = last;
+  while (k > 0 && t_go(k) < 30.0) --k;
+  ASSERT_GT(k, 0);
+  double range_to_go_m = 0.0;  // S = -int dE / D (C.2)
+  for (int j = k; j < last; ++j) {
+    range_to_go_m += (p.energy_Jpkg[j] - p.energy_Jpkg[j + 1]) * 0.5 * (1.0 / p.drag_mps2[j] + 1.0 / p.drag_mps2[j + 1]);
+  }
+  const config::TaemInterface& taem = m->mission.taem;
+  RelativeState s0{};
+  s0.radius_m = p.radius_m[k];
+  s0.altitude_m = p.radius_m[k] - kEarthRadius_m;
+  s0.velocity_mps = p.velocity_mps[k];
+  s0.energy_Jpkg = p.energy_Jpkg[k];
+  s0.drag_mps2 = p.drag_mps2[k];
+  s0.lift_mps2 = p.drag_mps2[k] * p.lift_over_drag[k];
+  double line = 0.0;  // heading of the line at the vehicle: the azimuth from it to the aim point
+  auto place = [&](RelativeState& st, double distance_m) {
+    const double back = taem.heading_rad + M_PI, arc = distance_m / kEarthRadius_m;
+    st.latitude_rad = std::asin(std::sin(taem.latitude_rad) * std::cos(arc) +
+                                std::cos(taem.latitude_rad) * std::sin(arc) * std::cos(back));
+    st.longitude_rad = taem.longitude_rad + std::atan2(std::sin(back) * std::sin(arc) * std::cos(taem.latitude_rad),
+                                                       std::cos(arc) - std::sin(taem.latitude_rad) * std::sin(st.latitude_rad));
+    const double dlon = taem.longitude_rad - st.longitude_rad;
+    line = std::atan2(std::sin(dlon) * std::cos(taem.latitude_rad),
+                      std::cos(st.latitude_rad) * std::sin(taem.latitude_rad) -
+                          std::sin(st.latitude_rad) * std::cos(taem.latitude_rad) * std::cos(dlon));
+  };
+  TrackerOutput out;
+  // Captured level (the pull-out done), then on the planned flight path, heading 5 deg short
+  // of the line on the side the bank turns from.
+  auto start = [&](EntryTracker& t, RelativeState& st, double distance_m) {
+    place(st, distance_m);
+    st.heading_rad = line;
+    if (t.step(st, 0.1, out) != Status::kOk) return 0.0;
+    const double sign = out.sigma_rad >= 0.0 ? 1.0 : -1.0;
+    st.t_s += 0.1;
+    st.flight_path_rad = p.gamma_rad[k];
+    st.heading_rad = line - sign * 5.0 * kDeg;
+    return t.step(st, 0.1, out) == Status::kOk ? sign : 0.0;
+  };
+  double distance_m = range_to_go_m;
+  for (int i = 0; i < 100; ++i, distance_m *= 1.01) {
+    EntryTracker probe = m->tracker;
+    RelativeState st = s0;
+    if (start(probe, st, distance_m) != 0.0 && out.drag_ref_mps2 < 1.02 * st.drag_mps2) break;
+  }
+  RelativeState s = s0;
+  const double sign = start(m->tracker, s, distance_m);
+  ASSERT_NE(sign, 0.0);
+  ASSERT_EQ(out.phase, Phase::kTracking);
+  ASSERT_NEAR(out.drag_ref_mps2, s.drag_mps2, 0.03 * s.drag_mps2);
+  // One cycle: the bank flown rolls towards the command at the maximum rate, alpha follows
+  // the command, the sensed drag follows the reference.
+  const double roll_step_rad = m->mission.constraints.sigma_rate_max_radps * 0.1;
+  double sigma_flown = out.sigma_rad;
+  auto fly = [&](EntryTracker& t, RelativeState& st) {
+    st.t_s += 0.1;
+    t.set_flown_attitude(out.alpha_rad, sigma_flown);
+    const Status status = t.step(st, 0.1, out);
+    sigma_flown += std::clamp(out.sigma_rad - sigma_flown, -roll_step_rad, roll_step_rad);
+    return status;
+  };
+  // The sensed drag trimmed to the reference (the drag loop balanced).
+  auto trim = [&](EntryTracker& t, RelativeState& st) {
+    for (int i = 0; i < 5; ++i) {
+      st.drag_mps2 = out.drag_ref_mps2;
+      st.lift_mps2 = out.drag_ref_mps2 * p.lift_over_drag[k];
+      if (fly(t, st) != Status::kOk) return false;
+    }
+    return true;
+  };
+  ASSERT_TRUE(trim(m->tracker, s));
+  ASSERT_EQ(out.phase, Phase::kTracking);
+  const double alpha_profile = out.alpha_rad;
+  auto fly_until_tracking = [&](EntryTracker& t, RelativeState& st) {
+    for (int i = 0; i < 1000 && out.phase == Phase::kReversal; ++i) ASSERT_EQ(fly(t, st), Status::kOk);
+    ASSERT_EQ(out.phase, Phase::kTracking);
+  };
+  // Final reversal, modulated.
+  s.heading_rad = line + sign * 8.0 * kDeg;
+  ASSERT_EQ(fly(m->tracker, s), Status::kOk);
+  ASSERT_EQ(out.phase, Phase::kReversal);
+  EXPECT_LT(out.sigma_rad * sign, 0.0);
+  EXPECT_LT(out.alpha_rad, alpha_profile - 0.5 * kDeg);
+  fly_until_tracking(m->tracker, s);
+  EXPECT_LT(out.sigma_rad * sign, 0.0);
+  ASSERT_TRUE(trim(m->tracker, s));
+  // Twin short of the line: no correction.
+  EntryTracker twin = m->tracker;
+  RelativeState short_of_line = s;
+  short_of_line.heading_rad = line + sign * 3.0 * kDeg;
+  ASSERT_EQ(fly(twin, short_of_line), Status::kOk);
+  EXPECT_EQ(out.phase, Phase::kTracking);
+  EXPECT_LT(out.sigma_rad * sign, 0.0);
+  const double alpha_unmodulated = out.alpha_rad;
+  // Over-turned: the correction reversal, at the twin's (unmodulated) alpha.
+  s.heading_rad = line - sign * 10.0 * kDeg;
+  ASSERT_EQ(fly(m->tracker, s), Status::kOk);
+  ASSERT_EQ(out.phase, Phase::kReversal);
+  EXPECT_GT(out.sigma_rad * sign, 0.0);
+  EXPECT_EQ(out.alpha_rad, alpha_unmodulated);
+  fly_until_tracking(m->tracker, s);
+  EXPECT_GT(out.sigma_rad * sign, 0.0);
+  // Overshooting again (now on the first side): no third reversal.
+  s.heading_rad = line + sign * 10.0 * kDeg;
+  for (int i = 0; i < 50; ++i) {
+    ASSERT_EQ(fly(m->tracker, s), Status::kOk);
+    EXPECT_EQ(out.phase, Phase::kTracking);
+    EXPECT_GT(out.sigma_rad * sign, 0.0);
   }
 }
 

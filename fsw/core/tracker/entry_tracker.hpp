@@ -10,7 +10,8 @@
 //                        corridor phase (last 30 % of the energy span), then a heading corridor
 //                        around a vector field onto the arrival great circle (the circle through
 //                        the aim point on the required TAEM heading), 6 -> 3 deg, with one last
-//                        reversal timed so that the heading at TAEM is the target heading;
+//                        reversal timed so that the heading at TAEM is the target heading
+//                        and, if the turn it leaves overshoots, one correction reversal;
 //   reversal             sign changes are flown open loop at the maximum bank rate (the rate
 //                        filter after the tracker limits the rate), drag integrator frozen;
 //                        alpha is lowered meanwhile so that C_L cos(sigma(t)) stays C_L cos(sigma0)
@@ -202,6 +203,7 @@ class EntryTracker {
   double mean_sigma_d_rad_ = -1.0;  // bank magnitude averaged for the final reversal (< 0: unset)
   config::TaemInterface taem_{};    // TAEM aim point, arrival heading, speed and bands (mission)
   bool final_reversal_done_ = false;
+  bool final_correction_done_ = false;  // the one reversal allowed after the final one
   int last_sign_ = 0;
   double reversal_until_t_s_ = -1.0;
   double reversal_start_t_s_ = -1.0;  // start of the last reversal
