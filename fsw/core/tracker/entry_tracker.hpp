@@ -23,9 +23,9 @@
 //   terminal range       over the last 25 % of the energy span the drag reference gets a
 //                        range-to-go increment (quadratic in energy) vanishing at TAEM, and the
 //                        final drag takes as much of the sensed drag-to-model ratio as keeps
-//                        the TAEM state inside its altitude and Mach bands (the rest of the
-//                        ratio moves the TAEM altitude); the increment stays within the plan's
-//                        path-constraint bound.
+//                        the TAEM state inside the inner half of its altitude band and inside
+//                        its Mach band (the rest of the ratio moves the TAEM altitude); the
+//                        increment stays within the plan's path-constraint bound.
 // Before the first plan, and until the sensed drag passes the initial-descent threshold,
 // the tracker holds the profile alpha and wings level (flight practice, DESIGN §6).
 // Gains are derived from vehicle-independent physics (see derive_gains) unless the mission
