@@ -772,6 +772,9 @@ TEST(Tracker, OneCorrectionReversalStopsAFinalTurnThatOvershoots) {
     for (int i = 0; i < 1000 && out.phase == Phase::kReversal; ++i) ASSERT_EQ(fly(t, st), Status::kOk);
     ASSERT_EQ(out.phase, Phase::kTracking);
   };
+  const EntryTracker before_final = m->tracker;
+  const RelativeState s_before_final = s;
+  const double sigma_flown_before_final = sigma_flown;
   // Final reversal, modulated.
   s.heading_rad = line + sign * 8.0 * kDeg;
   ASSERT_EQ(fly(m->tracker, s), Status::kOk);
@@ -804,6 +807,29 @@ TEST(Tracker, OneCorrectionReversalStopsAFinalTurnThatOvershoots) {
     EXPECT_EQ(out.phase, Phase::kTracking);
     EXPECT_GT(out.sigma_rad * sign, 0.0);
   }
+  // Final reversal from a lift-down bank (the sensed drag 40 % short: the loop asks for lift
+  // down on both sides), 30 deg past the line: the roll from the bank flown at its start to
+  // the loop's bank on the other side is over before the nominal duration 2 sigma0 /
+  // sigma_rate. Far over-turned (60 deg: the turn left is large at this bank and time to go)
+  // as soon as the flown bank has settled within 2 deg of the command, still inside the
+  // nominal duration: the correction starts then.
+  EntryTracker& t = m->tracker;
+  t = before_final;
+  s = s_before_final;
+  sigma_flown = sigma_flown_before_final;
+  s.drag_mps2 *= 0.6;
+  for (int i = 0; i < 100 && std::fabs(sigma_flown) < 100.0 * kDeg; ++i) ASSERT_EQ(fly(t, s), Status::kOk);
+  ASSERT_GT(std::fabs(sigma_flown), 95.0 * kDeg);
+  ASSERT_EQ(out.phase, Phase::kTracking);
+  s.heading_rad = line + sign * 30.0 * kDeg;
+  ASSERT_EQ(fly(t, s), Status::kOk);
+  ASSERT_EQ(out.phase, Phase::kReversal);
+  for (int i = 0; i < 1000 && std::fabs(sigma_flown - out.sigma_rad) > 2.0 * kDeg; ++i) ASSERT_EQ(fly(t, s), Status::kOk);
+  ASSERT_LT(out.sigma_rad * sign, 0.0);
+  ASSERT_EQ(out.phase, Phase::kReversal);  // still within the nominal duration
+  s.heading_rad = line - sign * 60.0 * kDeg;
+  ASSERT_EQ(fly(t, s), Status::kOk);
+  EXPECT_GT(out.sigma_rad * sign, 0.0);
 }
 
 TEST(Tracker, LiftOverDragEstimateConvergesToTheSensedRatio) {

@@ -62,6 +62,7 @@ constexpr int kFinalFactorSamples = 20;  // scan of the final-drag factor betwee
 constexpr double kFinalAltitudeBandDepth = 0.5;  // predicted TAEM altitude within half the band
 constexpr double kModulationBoundMargin = 0.85;
 constexpr double kDegree_rad = M_PI / 180.0;
+constexpr double kBankSettled_rad = 5.0 * kDegree_rad;  // flown bank this close to the command: roll over
 // Sensed drag-to-model ratio: first-order filter, bounded.
 constexpr double kDragScaleTimeConstant_s = 20.0;
 constexpr double kMinDragScale = 0.5;
@@ -748,7 +749,14 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
       // 500: TAEM heading error sd 3.9 -> 2.5 deg, 494 -> 496 successful (heading failures
       // 4 -> 2), 988 -> 990 of 1000 over three seed sets, HORUS 73 -> 74 of 500.
       const bool balance_passed = last_sign_ * (turn.heading_err_rad - cross_weight * turn.cross_track_m) >= 0.0;
-      if (!reversing && balance_passed && !final_correction_done_) {
+      // The correction may start once the final reversal's roll has settled on the bank the
+      // loop asks for: its nominal duration 2 sigma0 / sigma_rate outlasts a roll from a
+      // lift-down bank (seed 462: started at 87 deg, still counted as rolling at TAEM while
+      // the turn overshot by 13.7 deg; X-33 seed 7 x 500: 498 -> 499, 994 -> 997 of 1000).
+      const bool bank_settled = flown_alpha_rad_ >= 0.0 && flown_sigma_rad_ * last_sign_ > 0.0 &&
+                                std::fabs(flown_sigma_rad_ - last_sign_ * sigma_d) < kBankSettled_rad;
+      const bool roll_over = !reversing || (final_reversal_done_ && bank_settled);
+      if (roll_over && balance_passed && !final_correction_done_) {
         sign_ref = -last_sign_;
         final_correction_done_ = final_reversal_done_;
         final_reversal_done_ = true;
