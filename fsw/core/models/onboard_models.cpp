@@ -219,9 +219,13 @@ bool has_mach_band(const config::TaemInterface& taem) {
   return taem.mach_target > 0.0 && taem.mach_tol > 0.0 && taem.mach_tol < config::kNotConstrained;
 }
 
+double OnboardModels::taem_altitude_depth(const config::TaemInterface& taem, double altitude_m) {
+  return 1.0 - std::fabs(altitude_m - taem.altitude_m) / taem.altitude_tol_m;
+}
+
 double OnboardModels::taem_band_depth(const config::TaemInterface& taem, double taem_energy_Jpkg,
                                       double altitude_m) const {
-  double depth = 1.0 - std::fabs(altitude_m - taem.altitude_m) / taem.altitude_tol_m;
+  double depth = taem_altitude_depth(taem, altitude_m);
   if (has_mach_band(taem)) {
     const double v = velocity_from_energy_mps(taem_energy_Jpkg, kEarthRadius_m + altitude_m);
     depth = std::fmin(depth, 1.0 - std::fabs(mach(altitude_m, v) - taem.mach_target) / taem.mach_tol);

@@ -135,6 +135,8 @@ class OnboardModels {
   /// edge, < 0: outside); the altitude band alone when no Mach band is given (has_mach_band).
   /// Needs altitude_tol_m > 0.
   double taem_band_depth(const config::TaemInterface& taem, double taem_energy_Jpkg, double altitude_m) const;
+  /// The altitude term of taem_band_depth alone. Needs altitude_tol_m > 0.
+  static double taem_altitude_depth(const config::TaemInterface& taem, double altitude_m);
   /// Drag acceleration D = rho V^2 CD S / (2 m)  (D.1).
   double drag_mps2(double alpha_rad, double altitude_m, double velocity_mps) const;
   double lift_mps2(double alpha_rad, double altitude_m, double velocity_mps) const;

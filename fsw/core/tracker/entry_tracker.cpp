@@ -289,9 +289,8 @@ double EntryTracker::final_drag_factor() const {
   for (int i = 0; i <= kFinalFactorSamples; ++i) {
     const double k = 1.0 + (K - 1.0) * i / kFinalFactorSamples;
     const double altitude_m = planned_altitude_m + kScaleHeight_m * std::log(K / k);
-    const double altitude_depth = 1.0 - std::fabs(altitude_m - taem_.altitude_m) / taem_.altitude_tol_m;
     if (models_.taem_band_depth(taem_, taem_energy_Jpkg_, altitude_m) >= 0.0 &&
-        altitude_depth >= kFinalAltitudeBandDepth) {
+        OnboardModels::taem_altitude_depth(taem_, altitude_m) >= kFinalAltitudeBandDepth) {
       return k;
     }
   }
@@ -758,7 +757,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
       const bool roll_over = !reversing || (final_reversal_done_ && bank_settled);
       if (roll_over && balance_passed && !final_correction_done_) {
         sign_ref = -last_sign_;
-        final_correction_done_ = final_reversal_done_;
+        if (final_reversal_done_) final_correction_done_ = true;
         final_reversal_done_ = true;
         // The drag integral was built up on the range control's pre-reversal reference (it
         // asks for the drag the reversal's alpha modulation will give back); kept, it held
