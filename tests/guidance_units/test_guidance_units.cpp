@@ -682,11 +682,12 @@ TEST(Tracker, OneCorrectionReversalStopsAFinalTurnThatOvershoots) {
   // two reversals at 5 deg/s) on the planned flight-path angle, on the arrival line (placed by
   // the spherical destination formula) at the distance where the range control asks for the
   // planned drag (the plan's range to go (C.2) plus the final reversal's range extension),
-  // the sensed drag then following the reference. Turned 8 deg past the line in the direction
-  // of the bank: the final reversal starts, alpha modulated below the profile. After it,
-  // 10 deg past the line the other way (over-turned): one correction reversal, at the profile
-  // alpha (no modulation seconds before TAEM); a twin still 3 deg short of the line keeps its
-  // bank. A second overshoot gets no further reversal.
+  // the sensed drag trimmed to the reference before each test, the flown bank rolling at the
+  // rate limit. Turned 8 deg past the line in the direction of the bank: the final reversal
+  // starts, alpha modulated below the profile. After it, 10 deg past the line the other way
+  // (over-turned): one correction reversal, at the alpha of a twin that does not reverse (no
+  // modulation seconds before TAEM); the twin, still 3 deg short of the line, keeps its bank.
+  // A second overshoot gets no further reversal.
   auto m = mid_profile_tracker(0.0);
   ASSERT_NE(m, nullptr);
   const ReferenceProfile& p = *m->profile;
