@@ -242,6 +242,7 @@ CycleOutput Executive::step(const NavInput& nav) {
     out.sigma_rad = law.sigma_rad;
     out.phase = law.phase;
   }
+  out.drag_ref_mps2 = law.drag_ref_mps2;
   out.drag_err_mps2 = law.drag_err_mps2;
   out.heading_err_rad = law.heading_err_rad;
   if (law_status == Status::kOk && std::isfinite(law.lift_over_drag_scale) && law.lift_over_drag_scale > 0.0) {

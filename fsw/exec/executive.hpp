@@ -87,7 +87,8 @@ struct CycleOutput {
   Phase phase = Phase::kInitialDescent;
   int plan_seq = 0;
   std::int32_t health_flags = 0;
-  double drag_err_mps2 = 0.0;
+  double drag_ref_mps2 = 0.0;    // the tracker's drag reference (at the reference alpha)
+  double drag_err_mps2 = 0.0;    // sensed drag referred to the reference alpha, minus the reference
   double heading_err_rad = 0.0;
   bool plan_adopted = false;     // a plan was adopted in this cycle
 };

@@ -86,7 +86,7 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
           std::fprintf(trace, "%.1f,%.4f,%.2f,%.4f,%.3f,%.5f,%.5f,%.3f,%.3f,%.1f,%.4f,%.4f,%.3f,%.3f,%.3f,%.2f,%.3f,%.4f,%.3f,%d,%d\n",
                        t.t_s, t.h_m * 1e-3, t.V_mps, t.gamma_rad * d, t.chi_rad * d, t.lat_rad * d, t.lon_rad * d,
                        t.range_to_taem_m * 1e-3, t.heading_to_taem_rad * d, t.E_Jpkg, t.D_mps2,
-                       out.drag_err_mps2 == 0.0 ? 0.0 : t.D_mps2 - out.drag_err_mps2, out.alpha_rad * d,
+                       out.drag_ref_mps2, out.alpha_rad * d,
                        out.sigma_rad * d, out.heading_err_rad * d, t.qdot_Wpm2 * 1e-3, t.q_Pa * 1e-3, t.n_g,
                        t.mach, static_cast<int>(out.phase), static_cast<int>(out.plan_seq));
         }
