@@ -107,6 +107,7 @@ struct ReferenceProfile {
   int initial_bank_sign = 1;                   // +1 right, -1 left (quadrant rule, fig. 7.20)
   double entry_energy_Jpkg = 0.0;              // normalisation energy
   double taem_energy_Jpkg = 0.0;
+  double taem_altitude_m = 0.0;                // height above the ellipsoid the final drag is planned for
   // Planner diagnostics
   double dc_mps2 = 0.0;
   double e1_Jpkg = 0.0;

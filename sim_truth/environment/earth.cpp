@@ -19,6 +19,13 @@ double altitude_m(const Eigen::Vector3d& r_R, ShapeModel shape) {
   return r - re * (1.0 - EarthConstants::kFlattening * s * s);
 }
 
+double radius_at_altitude_m(double geocentric_latitude_rad, double altitude_m, ShapeModel shape) {
+  const double re = EarthConstants::kEquatorialRadius_m;
+  if (shape == ShapeModel::kSphere) return re + altitude_m;
+  const double s = std::sin(geocentric_latitude_rad);
+  return altitude_m + re * (1.0 - EarthConstants::kFlattening * s * s);  // (2.13)
+}
+
 Eigen::Matrix3d rotation_I_to_R(double t_s) {
   const double a = EarthConstants::kOmega_radps * t_s;
   const double c = std::cos(a), s = std::sin(a);

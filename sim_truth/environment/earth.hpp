@@ -18,6 +18,10 @@ enum class ShapeModel { kSphere, kOblate };
 /// h = r - Re (1 - f sin^2(delta)), delta the geocentric latitude.
 double altitude_m(const Eigen::Vector3d& r_R, ShapeModel shape);
 
+/// Radius of the point at altitude h above the reference surface at geocentric latitude
+/// delta: the inverse of altitude_m, r = h + Re (1 - f sin^2(delta)) for the oblate shape.
+double radius_at_altitude_m(double geocentric_latitude_rad, double altitude_m, ShapeModel shape);
+
 /// Geocentric latitude delta of a position in the rotating frame R.
 double geocentric_latitude_rad(const Eigen::Vector3d& r_R);
 

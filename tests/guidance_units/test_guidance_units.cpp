@@ -637,6 +637,69 @@ TEST(Tracker, ReversalModulationNeverRemovesLiftTheDragLoopAsksFor) {
   }
 }
 
+TEST(Tracker, NoLiftDownInTheFinalReversalWindow) {
+  // Sensed drag at half the reference: the drag loop asks for lift down. 10 s before TAEM
+  // (inside the final-reversal window, twice the reversal time 2 sigma / sigma_rate at about
+  // 50 deg and 5 deg/s) the bank stops at 90 deg (zero vertical lift): a dive started there
+  // cannot be arrested before TAEM. 150 s before TAEM (terminal phase, outside the window)
+  // and mid-flight the bank goes past 90 deg.
+  auto probe = mid_profile_tracker(0.0);
+  ASSERT_NE(probe, nullptr);
+  const ReferenceProfile& p = *probe->profile;
+  const int last = p.n_points - 1;
+  auto t_go = [&](int j) {
+    return (p.energy_Jpkg[j] - p.energy_Jpkg[last]) / (p.drag_mps2[j] * 0.5 * (p.velocity_mps[j] + p.velocity_mps[last]));
+  };
+  auto index_at = [&](double t_go_s) {
+    int k = last;
+    while (k > 0 && t_go(k) < t_go_s) --k;
+    return k;
+  };
+  int k_mid = last;  // above the terminal phase
+  while (k_mid > 0 && p.energy_Jpkg[k_mid] < 1.1 * probe->tracker.terminal_energy_Jpkg()) --k_mid;
+  struct Case { int k; bool barred; };
+  for (const Case c : {Case{index_at(10.0), true}, Case{index_at(150.0), false}, Case{k_mid, false}}) {
+    auto m = mid_profile_tracker(static_cast<double>(c.k) / last);
+    ASSERT_NE(m, nullptr);
+    RelativeState s = m->state;
+    TrackerOutput out;
+    ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);  // level: captured, the mean bank set
+    ASSERT_EQ(out.phase, Phase::kTracking);
+    s.t_s += 0.1;
+    s.flight_path_rad = p.gamma_rad[c.k];  // then on the planned flight path and drag
+    ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
+    ASSERT_LT(std::fabs(out.sigma_rad), 0.5 * M_PI);
+    s.t_s += 0.1;
+    s.drag_mps2 *= 0.5;
+    s.lift_mps2 *= 0.5;
+    ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
+    ASSERT_NE(out.phase, Phase::kInitialDescent);  // a reversal may start: the magnitude counts
+    EXPECT_EQ(s.energy_Jpkg < m->tracker.terminal_energy_Jpkg(), c.k != k_mid) << c.k;
+    if (c.barred) {
+      EXPECT_NEAR(std::fabs(out.sigma_rad), 0.5 * M_PI, 1e-9) << c.k;
+      EXPECT_NEAR(out.u_drag, 0.0, 1e-12);
+    } else {
+      EXPECT_GT(std::fabs(out.sigma_rad), 0.5 * M_PI + 0.1) << c.k;
+    }
+  }
+}
+
+TEST(Tracker, TerminalDragLoopSettlesWithinTheTimeToGo) {
+  // The floor on the loop's natural frequency keeps its time constant 1 / (zeta omega)
+  // (zeta = 1/sqrt(2)) within the time to go, up to three times omega0 (bank-rate limit).
+  const double omega0 = 2.0 * std::sqrt(kG0_mps2 / 7050.0);
+  const double zeta = 1.0 / std::sqrt(2.0);
+  for (double t_go : {2.0, 5.0, 10.0, 20.0, 60.0, 300.0}) {
+    const double w = terminal_omega_floor_radps(omega0, t_go);
+    EXPECT_LE(w, 3.0 * omega0 * (1.0 + 1e-12)) << t_go;
+    if (w < 3.0 * omega0) {
+      EXPECT_LE(1.0 / (zeta * w), t_go) << t_go;
+    }
+  }
+  EXPECT_LT(terminal_omega_floor_radps(omega0, 60.0), omega0);  // far from TAEM: the schedule rules
+  EXPECT_DOUBLE_EQ(terminal_omega_floor_radps(omega0, 0.0), 3.0 * omega0);
+}
+
 TEST(Tracker, FinalDragTakesOnlyThePartOfTheDragRatioTheInnerTaemBandNeeds) {
   // altitude band +-1.8 km, no Mach band. The sensed drag is K times the on-board
   // model's for 300 s (20 s filter). Flying k times the planned final drag meets the TAEM
@@ -660,7 +723,7 @@ TEST(Tracker, FinalDragTakesOnlyThePartOfTheDragRatioTheInnerTaemBandNeeds) {
       ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
     }
     const auto& p = *m->profile;
-    const double h_plan = p.radius_m[p.n_points - 1] - kEarthRadius_m;
+    const double h_plan = p.taem_altitude_m;  // above the ellipsoid, as the mission's TAEM altitude
     const double half_width_m = kInnerBand * m->mission.taem.altitude_tol_m;
     const double lo = m->mission.taem.altitude_m - half_width_m - h_plan;
     const double hi = m->mission.taem.altitude_m + half_width_m - h_plan;
@@ -808,25 +871,30 @@ TEST(Tracker, OneCorrectionReversalStopsAFinalTurnThatOvershoots) {
     EXPECT_EQ(out.phase, Phase::kTracking);
     EXPECT_GT(out.sigma_rad * sign, 0.0);
   }
-  // Final reversal from a lift-down bank (the sensed drag 40 % short: the loop asks for lift
-  // down on both sides), 30 deg past the line: the roll from the bank flown at its start to
-  // the loop's bank on the other side is over before the nominal duration 2 sigma0 /
-  // sigma_rate. Far over-turned (60 deg: the turn left is large at this bank and time to go)
-  // as soon as the flown bank has settled within 2 deg of the command, still inside the
-  // nominal duration: the correction starts then.
+  // Final reversal from a 90 deg bank (the sensed drag 40 % short: the loop asks for lift
+  // down, which the final-reversal window stops at 90 deg), 30 deg past the line; the drag then back
+  // on the reference, so that the loop's bank on the other side is smaller: the roll from the
+  // bank flown at its start is over before the nominal duration 2 sigma0 / sigma_rate. Far
+  // over-turned (60 deg: the turn left is large at this bank and time to go) as soon as the
+  // flown bank has settled within 2 deg of the command, still inside the nominal duration:
+  // the correction starts then.
   EntryTracker& t = m->tracker;
   t = before_final;
   s = s_before_final;
   sigma_flown = sigma_flown_before_final;
+  const double drag_trimmed = s.drag_mps2;
   s.drag_mps2 *= 0.6;
-  for (int i = 0; i < 100 && std::fabs(sigma_flown) < 100.0 * kDeg; ++i) ASSERT_EQ(fly(t, s), Status::kOk);
-  ASSERT_GT(std::fabs(sigma_flown), 95.0 * kDeg);
+  for (int i = 0; i < 100 && std::fabs(sigma_flown) < 89.9 * kDeg; ++i) ASSERT_EQ(fly(t, s), Status::kOk);
+  ASSERT_GT(std::fabs(sigma_flown), 89.9 * kDeg);
+  ASSERT_LE(std::fabs(out.sigma_rad), 90.0 * kDeg + 1e-9);  // no lift down in the final window
   ASSERT_EQ(out.phase, Phase::kTracking);
   s.heading_rad = line + sign * 30.0 * kDeg;
   ASSERT_EQ(fly(t, s), Status::kOk);
   ASSERT_EQ(out.phase, Phase::kReversal);
+  s.drag_mps2 = drag_trimmed;
   for (int i = 0; i < 1000 && std::fabs(sigma_flown - out.sigma_rad) > 2.0 * kDeg; ++i) ASSERT_EQ(fly(t, s), Status::kOk);
   ASSERT_LT(out.sigma_rad * sign, 0.0);
+  ASSERT_LT(std::fabs(out.sigma_rad), 80.0 * kDeg);  // a roll shorter than 2 sigma0
   ASSERT_EQ(out.phase, Phase::kReversal);  // still within the nominal duration
   s.heading_rad = line - sign * 60.0 * kDeg;
   ASSERT_EQ(fly(t, s), Status::kOk);

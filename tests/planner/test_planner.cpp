@@ -87,6 +87,22 @@ TEST(OnboardModels, EnergyRoundTripAndGravity) {
   EXPECT_LT(velocity_from_energy_mps(1000.0, radius_of(50000.0)), 0.0);
 }
 
+TEST(OnboardModels, SurfaceRadiusIsTheWgs84Ellipsoid) {
+  // R_eq at the equator, the WGS-84 semi-minor axis b = 6356752.3142 m at the poles, and
+  // the exact geocentric ellipsoid radius a b / sqrt(b^2 cos^2 + a^2 sin^2) elsewhere up to
+  // its second-order term (3/8) f^2 a sin^2(2 lat) (27 m at 45 deg).
+  EXPECT_NEAR(surface_radius_m(0.0), 6378137.0, 1e-6);
+  EXPECT_NEAR(surface_radius_m(0.5 * M_PI), 6356752.3142, 1e-3);
+  EXPECT_NEAR(surface_radius_m(-0.5 * M_PI), 6356752.3142, 1e-3);
+  const double a = 6378137.0, b = 6356752.3142;
+  for (double lat_deg : {15.0, 28.7, 33.2, 45.0, 70.0}) {
+    const double c = std::cos(lat_deg * kDeg), sn = std::sin(lat_deg * kDeg);
+    const double exact = a * b / std::sqrt(b * b * c * c + a * a * sn * sn);
+    const double f = 1.0 / 298.257223563, s2lat = std::sin(2.0 * lat_deg * kDeg);
+    EXPECT_NEAR(surface_radius_m(lat_deg * kDeg) - exact, 0.375 * f * f * a * s2lat * s2lat, 0.5) << lat_deg;
+  }
+}
+
 TEST(OnboardModels, ExponentialAndTableAtmosphere) {
   OnboardAtmosphere exp_atm;
   ASSERT_EQ(exp_atm.init_exponential(), Status::kOk);

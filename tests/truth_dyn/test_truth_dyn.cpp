@@ -331,6 +331,28 @@ TEST(TruthDynamics, EntryStateIsReproducedOnBothShapes) {
   EXPECT_GT(make(m, a)->sample().r_m, make(m, b)->sample().r_m);
 }
 
+TEST(TruthDynamics, TaemEnergyIsTheEnergyOfTheTaemStateOnBothShapes) {
+  // A vehicle placed exactly at the mission's TAEM state (its altitude above the shape over
+  // the aim point, at its speed) has the TAEM energy: the event ends the run with zero
+  // altitude error and the mission's own speed. Independent truth: the simulator's entry
+  // placement (tested above) puts the state there and its sample gives the energy.
+  config::Mission m = truth_test::x33_test_mission();
+  m.taem.latitude_rad = 33.2 * kDeg;  // far from the equator: the shapes differ by 6.4 km here
+  m.entry.altitude_m = m.taem.altitude_m;
+  m.entry.latitude_rad = m.taem.latitude_rad;
+  m.entry.longitude_rad = m.taem.longitude_rad;
+  m.entry.velocity_mps = m.taem.velocity_mps;
+  for (ShapeChoice shape : {ShapeChoice::kSphere, ShapeChoice::kOblate}) {
+    SimOverrides ov = simple_models();
+    ov.shape = shape;
+    auto sim = make(m, ov);
+    ASSERT_TRUE(sim);
+    const TruthSample s = sim->sample();
+    EXPECT_NEAR(s.h_m, m.taem.altitude_m, 1e-6);
+    EXPECT_NEAR(s.E_Jpkg, sim->taem_energy_Jpkg(), 1e-9 * std::fabs(s.E_Jpkg)) << "shape " << static_cast<int>(shape);
+  }
+}
+
 TEST(TruthDynamics, EventsAreLocatedPrecisely) {
   const config::Mission base = truth_test::x33_test_mission();
   {  // TAEM energy

@@ -51,6 +51,11 @@ double specific_energy_Jpkg(double radius_m, double velocity_mps) {
   return 0.5 * velocity_mps * velocity_mps - kMuEarth_m3ps2 / radius_m + kMuEarth_m3ps2 / kEarthRadius_m;  // (7.8)
 }
 
+double surface_radius_m(double latitude_rad) {
+  const double s = std::sin(latitude_rad);
+  return kEarthRadius_m * (1.0 - kEarthFlattening * s * s);
+}
+
 double velocity_from_energy_mps(double energy_Jpkg, double radius_m) {
   const double v2 = 2.0 * (energy_Jpkg + kMuEarth_m3ps2 / radius_m - kMuEarth_m3ps2 / kEarthRadius_m);
   if (!(v2 >= 0.0)) return -1.0;
@@ -227,10 +232,14 @@ double OnboardModels::taem_band_depth(const config::TaemInterface& taem, double 
                                       double altitude_m) const {
   double depth = taem_altitude_depth(taem, altitude_m);
   if (has_mach_band(taem)) {
-    const double v = velocity_from_energy_mps(taem_energy_Jpkg, kEarthRadius_m + altitude_m);
+    const double v = taem_speed_mps(taem, taem_energy_Jpkg, altitude_m);
     depth = std::fmin(depth, 1.0 - std::fabs(mach(altitude_m, v) - taem.mach_target) / taem.mach_tol);
   }
   return depth;
+}
+
+double OnboardModels::taem_speed_mps(const config::TaemInterface& taem, double taem_energy_Jpkg, double altitude_m) {
+  return velocity_from_energy_mps(taem_energy_Jpkg, surface_radius_m(taem.latitude_rad) + altitude_m);
 }
 
 double OnboardModels::drag_mps2(double alpha_rad, double altitude_m, double velocity_mps) const {

@@ -21,6 +21,13 @@ inline constexpr double kMuEarth_m3ps2 = 3.986004418e14;
 inline constexpr double kEarthRadius_m = 6378137.0;        // R_eq, reference radius of (7.8)
 inline constexpr double kEarthRate_radps = 7.292115e-5;
 inline constexpr double kG0_mps2 = 9.80665;
+inline constexpr double kEarthFlattening = 1.0 / 298.257223563;  // WGS-84
+
+/// Radius of the reference ellipsoid at a latitude, first order in the flattening:
+/// R_eq (1 - f sin^2(lat)). Altitudes at the edges (the mission's TAEM altitude, the air's
+/// stratification) are heights above it, while the on-board models work with r - R_eq: at
+/// 33 deg latitude the two differ by 6.4 km.
+double surface_radius_m(double latitude_rad);
 
 /// Central gravity g = mu / r^2.
 double gravity_mps2(double radius_m);
@@ -135,6 +142,9 @@ class OnboardModels {
   /// edge, < 0: outside); the altitude band alone when no Mach band is given (has_mach_band).
   /// Needs altitude_tol_m > 0.
   double taem_band_depth(const config::TaemInterface& taem, double taem_energy_Jpkg, double altitude_m) const;
+  /// Speed at the TAEM energy at a height above the ellipsoid over the aim point (the energy
+  /// (7.8) is taken at the radius surface_radius_m(aim latitude) + height).
+  static double taem_speed_mps(const config::TaemInterface& taem, double taem_energy_Jpkg, double altitude_m);
   /// The altitude term of taem_band_depth alone. Needs altitude_tol_m > 0.
   static double taem_altitude_depth(const config::TaemInterface& taem, double altitude_m);
   /// Drag acceleration D = rho V^2 CD S / (2 m)  (D.1).

@@ -61,6 +61,10 @@ constexpr int kFinalTurnSteps = 50;                // midpoint steps of the fina
 constexpr int kFinalFactorSamples = 20;  // scan of the final-drag factor between 1 and K
 constexpr double kFinalAltitudeBandDepth = 0.5;  // predicted TAEM altitude within half the band
 constexpr double kModulationBoundMargin = 0.85;
+// Terminal drag-loop bandwidth: omega >= kTerminalSettling / t_go (time constant 1 / (zeta
+// omega) within the time to go), at most kTerminalOmegaMaxFactor omega0 (bank-rate limit).
+constexpr double kTerminalSettling = 1.5;
+constexpr double kTerminalOmegaMaxFactor = 3.0;
 constexpr double kDegree_rad = M_PI / 180.0;
 constexpr double kBankSettled_rad = 5.0 * kDegree_rad;  // flown bank this close to the command: roll over
 // Sensed drag-to-model ratio: first-order filter, bounded.
@@ -73,7 +77,6 @@ constexpr double kPullOutComplete = 1.05;  // pull-out counted as complete when 
 constexpr double kRollLag_s = 1.0;  // bank filter lag before a roll starts (pull-out guard, final turn)
 constexpr double kMinLodScale = 0.5;   // bounds of the L/D estimate (model / 2 .. model x 1.5)
 constexpr double kMaxLodScale = 1.5;
-constexpr double kEarthFlattening = 1.0 / 298.257223563;  // WGS-84
 
 bool finite_state(const RelativeState& s) {
   const double v[] = {s.t_s, s.radius_m, s.altitude_m, s.latitude_rad, s.velocity_mps, s.flight_path_rad,
@@ -118,7 +121,8 @@ Status EntryTracker::init(const config::Mission& mission) {
   gains_ = derive_gains(mission);
   const double r_entry = kEarthRadius_m + mission.entry.altitude_m;
   entry_energy_Jpkg_ = specific_energy_Jpkg(r_entry, mission.entry.velocity_mps);
-  taem_energy_Jpkg_ = specific_energy_Jpkg(kEarthRadius_m + mission.taem.altitude_m, mission.taem.velocity_mps);
+  taem_energy_Jpkg_ = specific_energy_Jpkg(surface_radius_m(mission.taem.latitude_rad) + mission.taem.altitude_m,
+                                           mission.taem.velocity_mps);
   if (!(entry_energy_Jpkg_ > taem_energy_Jpkg_)) return Status::kInvalidInput;
   const double e_taem_norm = taem_energy_Jpkg_ / entry_energy_Jpkg_;
   terminal_e_norm_ = e_taem_norm + kTerminalSpanFraction * (1.0 - e_taem_norm);
@@ -285,7 +289,7 @@ double EntryTracker::final_drag_factor() const {
   // HORUS (planned Mach 2.23 in 2.2-2.8) ended short of range, 57 of 500.
   const double K = drag_scale_;
   if (!(taem_.altitude_tol_m > 0.0) || !has_profile_) return K;
-  const double planned_altitude_m = profile_.radius_m[profile_.n_points - 1] - kEarthRadius_m;
+  const double planned_altitude_m = profile_.taem_altitude_m;
   for (int i = 0; i <= kFinalFactorSamples; ++i) {
     const double k = 1.0 + (K - 1.0) * i / kFinalFactorSamples;
     const double altitude_m = planned_altitude_m + kScaleHeight_m * std::log(K / k);
@@ -389,8 +393,7 @@ void EntryTracker::update_drag_scale(const RelativeState& s, double alpha_rad, d
   // the product of the density, drag-coefficient and mass errors (and wind), low-pass filtered.
   // The on-board altitude is above the R_eq sphere while the air is stratified over the
   // ellipsoid, so the model is evaluated at the height above the ellipsoid (first order in f).
-  const double slat = std::sin(s.latitude_rad);
-  const double h_ellipsoid_m = s.radius_m - kEarthRadius_m * (1.0 - kEarthFlattening * slat * slat);
+  const double h_ellipsoid_m = s.radius_m - surface_radius_m(s.latitude_rad);
   const double d_model = models_.drag_mps2(alpha_rad, h_ellipsoid_m, s.velocity_mps);
   if (!(d_model > kMinDrag_mps2) || !(s.drag_mps2 > kMinDrag_mps2)) return;
   const double ratio = clamp(s.drag_mps2 / d_model, kMinDragScale, kMaxDragScale);
@@ -433,6 +436,11 @@ double pullout_drag_after_roll_mps2(double drag_mps2, double lift_over_drag, dou
     drag *= std::exp(std::fmin(-dh / scale_height_m, 5.0));  // bounded: e^5 is far past any limit
   }
   return wings_level_pullout_drag_mps2(drag, lift_over_drag, h_dot, g_eff_mps2, scale_height_m);
+}
+
+double terminal_omega_floor_radps(double omega0_radps, double t_go_s) {
+  if (!(t_go_s > 0.0)) return kTerminalOmegaMaxFactor * omega0_radps;
+  return std::fmin(kTerminalSettling / t_go_s, kTerminalOmegaMaxFactor * omega0_radps);
 }
 
 FinalTurnState predict_final_turn(const FinalTurnInput& in) {
@@ -638,9 +646,25 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   double b = -density_term / V2;                                             // (7.20)
   if (!(std::fabs(b) > 0.0)) b = ref.b;
 
+  // Time to TAEM at the present drag with the speed falling linearly to the TAEM speed
+  // (E' = -D V): with the present speed instead, t_go came out 25-35 % short (X-33: 40 s
+  // predicted, 54 s flown), the final reversal was timed for a turn that short and the
+  // vehicle arrived 5-12 deg past the line.
+  const double v_f = std::fmin(taem_.velocity_mps, V);
+  const double t_go_s = (s.energy_Jpkg - taem_energy_Jpkg_) / std::fmax(D * 0.5 * (V + v_f), 1e-6);
+
   // Dynamic pressure from the sensed drag and the model C_D; scheduled omega (3.13).
   const double q = cd > 0.0 ? D_ref_alpha / (cd * models_.area_over_mass()) : ref.q;
-  const double omega_t = scheduled_omega(gains_.omega0_radps, q, q_ref_Pa_);
+  double omega_t = scheduled_omega(gains_.omega0_radps, q, q_ref_Pa_);
+  if (terminal) {
+    // In the last seconds the drag loop is made fast enough to remove its error before TAEM,
+    // where the drag sets the altitude: the final reversal leaves a drag deficit, the loop
+    // dives to recover it and, at omega0 (period 85 s), was still about 12 % above the
+    // reference at TAEM (60 dispersed X-33 runs, mean): 0.3-0.6 km low on average. X-33 seed
+    // 7 x 500: 491 without it (TAEM altitude mean -0.31 km, sd 0.67), 493 with it alone (-0.07,
+    // sd 0.54, but five heading failures), 499 with the lift-down limit below (-0.09, 0.52).
+    omega_t = std::fmax(omega_t, terminal_omega_floor_radps(gains_.omega0_radps, t_go_s));
+  }
 
   // Time -> energy conversion (3.14)-(3.18), E' = -D V.
   const double e_dot = -D * V;
@@ -668,7 +692,15 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     const double d_guard = std::fmin(constraint_limit, plan_bound);
     if (lift_up_pullout_drag_mps2(s, last_sigma_d_rad_) > d_guard) u_drag = lod;
   }
-  u_drag = clamp(u_drag, -lod, lod);
+  // No lift down in the final-reversal window (the last kFinalReversalWindow reversal
+  // durations, at the bank averaged up to the last cycle): a dive started there cannot be
+  // arrested before TAEM (the drag overshoots, the TAEM altitude comes out low) and a bank
+  // past 90 deg turns the vehicle on after the final reversal (X-33 seeds 320, 408, 426, 460,
+  // 506 ended 10-12 deg off heading with it, 2-5 deg without). Barred over the whole terminal
+  // phase, the runs that need much more drag there flew on at 90 deg (seed 462: 33 km long).
+  const bool in_final_window =
+      terminal && mean_sigma_d_rad_ > 0.0 && t_go_s < kFinalReversalWindow * 2.0 * mean_sigma_d_rad_ / sigma_rate_max_radps_;
+  u_drag = clamp(u_drag, in_final_window ? 0.0 : -lod, lod);
   out.u_drag = u_drag;
   const double sigma_d = std::acos(clamp(u_drag / lod, -1.0, 1.0));          // (3.20)
 
@@ -713,12 +745,6 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     const double e_taem_norm = taem_energy_Jpkg_ / entry_energy_Jpkg_;
     const double x = clamp((e_norm - e_taem_norm) / (lateral_e_norm_ - e_taem_norm), 0.0, 1.0);
     const double corridor = kCorridorMin_rad + (kCorridorMax_rad - kCorridorMin_rad) * x;
-    // Time to TAEM at the present drag with the speed falling linearly to the TAEM speed
-    // (E' = -D V): with the present speed instead, t_go came out 25-35 % short (X-33: 40 s
-    // predicted, 54 s flown), the final reversal was timed for a turn that short and the
-    // vehicle arrived 5-12 deg past the line.
-    const double v_f = std::fmin(taem_.velocity_mps, V);
-    const double t_go_s = (s.energy_Jpkg - taem_energy_Jpkg_) / std::fmax(D * 0.5 * (V + v_f), 1e-6);
     sign_ref = last_sign_;
     if (t_go_s < kFinalReversalWindow * t_rev_mean_s) {
       // The one last reversal starts when the TAEM state it leads to is balanced between

@@ -25,7 +25,10 @@
 //                        final drag takes as much of the sensed drag-to-model ratio as keeps
 //                        the TAEM state inside the inner half of its altitude band and inside
 //                        its Mach band (the rest of the ratio moves the TAEM altitude); the
-//                        increment stays within the plan's path-constraint bound.
+//                        increment stays within the plan's path-constraint bound; the drag
+//                        loop's frequency is at least 1.5 / t_go (at most 3 omega0) and, in
+//                        the final-reversal window, the bank stays within 90 deg (no lift
+//                        down), so that the drag error is removed before TAEM.
 // Before the first plan, and until the sensed drag passes the initial-descent threshold,
 // the tracker holds the profile alpha and wings level (flight practice, DESIGN §6).
 // Gains are derived from vehicle-independent physics (see derive_gains) unless the mission
@@ -95,6 +98,11 @@ struct FinalTurnState {
   double cross_track_m = 0.0;
 };
 FinalTurnState predict_final_turn(const FinalTurnInput& in);
+
+/// Lower bound on the drag loop's natural frequency in the terminal phase: 1.5 / t_go, so
+/// that the loop's time constant 1 / (zeta omega) stays within the time to go, at most three
+/// times omega0 (the bank-rate limit bounds what a faster loop can fly).
+double terminal_omega_floor_radps(double omega0_radps, double t_go_s);
 
 /// The documented gain rule (no per-vehicle tuning):
 ///  - omega0 = 2 sqrt(g0 / H), twice the natural frequency sqrt(g/H) of the altitude mode of a
