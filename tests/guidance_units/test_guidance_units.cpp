@@ -422,6 +422,12 @@ std::unique_ptr<MidProfile> mid_profile_tracker(double profile_fraction) {
   s.lift_mps2 = profile.drag_mps2[k] * profile.lift_over_drag[k];
   return m;
 }
+// Time from profile point j to TAEM at its drag, the speed falling linearly to the TAEM speed
+// (E' = -D V), as the tracker estimates it.
+double profile_time_to_go_s(const ReferenceProfile& p, int j) {
+  const int last = p.n_points - 1;
+  return (p.energy_Jpkg[j] - p.energy_Jpkg[last]) / (p.drag_mps2[j] * 0.5 * (p.velocity_mps[j] + p.velocity_mps[last]));
+}
 }  // namespace
 
 TEST(Tracker, DragReferenceNeverExceedsTheSensedConstraintBound) {
@@ -647,9 +653,7 @@ TEST(Tracker, NoLiftDownInTheFinalReversalWindow) {
   ASSERT_NE(probe, nullptr);
   const ReferenceProfile& p = *probe->profile;
   const int last = p.n_points - 1;
-  auto t_go = [&](int j) {
-    return (p.energy_Jpkg[j] - p.energy_Jpkg[last]) / (p.drag_mps2[j] * 0.5 * (p.velocity_mps[j] + p.velocity_mps[last]));
-  };
+  auto t_go = [&](int j) { return profile_time_to_go_s(p, j); };
   auto index_at = [&](double t_go_s) {
     int k = last;
     while (k > 0 && t_go(k) < t_go_s) --k;
@@ -755,9 +759,7 @@ TEST(Tracker, OneCorrectionReversalStopsAFinalTurnThatOvershoots) {
   ASSERT_NE(m, nullptr);
   const ReferenceProfile& p = *m->profile;
   const int last = p.n_points - 1;
-  auto t_go = [&](int j) {
-    return (p.energy_Jpkg[j] - p.energy_Jpkg[last]) / (p.drag_mps2[j] * 0.5 * (p.velocity_mps[j] + p.velocity_mps[last]));
-  };
+  auto t_go = [&](int j) { return profile_time_to_go_s(p, j); };
   int k = last;
   while (k > 0 && t_go(k) < 30.0) --k;
   ASSERT_GT(k, 0);

@@ -46,6 +46,12 @@ std::unique_ptr<Simulator> make(const config::Mission& m, const SimOverrides& ov
   return sim;
 }
 
+std::unique_ptr<Simulator> make_on_shape(const config::Mission& m, ShapeChoice shape) {
+  SimOverrides ov = simple_models();
+  ov.shape = shape;
+  return make(m, ov);
+}
+
 // ---- independent reference: spherical equations (2.32)-(2.37), central gravity, no wind -------
 // y = {r, tau (lon), delta (lat), V, gamma, chi}
 using Sph = std::array<double, 6>;
@@ -306,9 +312,7 @@ TEST(TruthDynamics, AerodynamicForceFollowsTheAirspeedWithWind) {
 TEST(TruthDynamics, EntryStateIsReproducedOnBothShapes) {
   const config::Mission m = truth_test::x33_test_mission();
   for (ShapeChoice shape : {ShapeChoice::kSphere, ShapeChoice::kOblate}) {
-    SimOverrides ov = simple_models();
-    ov.shape = shape;
-    auto sim = make(m, ov);
+    auto sim = make_on_shape(m, shape);
     ASSERT_TRUE(sim);
     const TruthSample s = sim->sample();
     EXPECT_NEAR(s.h_m, m.entry.altitude_m, 1e-6);
@@ -343,9 +347,7 @@ TEST(TruthDynamics, TaemEnergyIsTheEnergyOfTheTaemStateOnBothShapes) {
   m.entry.longitude_rad = m.taem.longitude_rad;
   m.entry.velocity_mps = m.taem.velocity_mps;
   for (ShapeChoice shape : {ShapeChoice::kSphere, ShapeChoice::kOblate}) {
-    SimOverrides ov = simple_models();
-    ov.shape = shape;
-    auto sim = make(m, ov);
+    auto sim = make_on_shape(m, shape);
     ASSERT_TRUE(sim);
     const TruthSample s = sim->sample();
     EXPECT_NEAR(s.h_m, m.taem.altitude_m, 1e-6);
