@@ -232,14 +232,14 @@ double OnboardModels::taem_band_depth(const config::TaemInterface& taem, double 
                                       double altitude_m) const {
   double depth = taem_altitude_depth(taem, altitude_m);
   if (has_mach_band(taem)) {
-    const double v = taem_speed_mps(taem, taem_energy_Jpkg, altitude_m);
+    const double v = taem_speed_mps(taem.latitude_rad, taem_energy_Jpkg, altitude_m);
     depth = std::fmin(depth, 1.0 - std::fabs(mach(altitude_m, v) - taem.mach_target) / taem.mach_tol);
   }
   return depth;
 }
 
-double OnboardModels::taem_speed_mps(const config::TaemInterface& taem, double taem_energy_Jpkg, double altitude_m) {
-  return velocity_from_energy_mps(taem_energy_Jpkg, surface_radius_m(taem.latitude_rad) + altitude_m);
+double OnboardModels::taem_speed_mps(double aim_latitude_rad, double taem_energy_Jpkg, double altitude_m) {
+  return velocity_from_energy_mps(taem_energy_Jpkg, surface_radius_m(aim_latitude_rad) + altitude_m);
 }
 
 double OnboardModels::drag_mps2(double alpha_rad, double altitude_m, double velocity_mps) const {

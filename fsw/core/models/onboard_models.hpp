@@ -144,7 +144,7 @@ class OnboardModels {
   double taem_band_depth(const config::TaemInterface& taem, double taem_energy_Jpkg, double altitude_m) const;
   /// Speed at the TAEM energy at a height above the ellipsoid over the aim point (the energy
   /// (7.8) is taken at the radius surface_radius_m(aim latitude) + height).
-  static double taem_speed_mps(const config::TaemInterface& taem, double taem_energy_Jpkg, double altitude_m);
+  static double taem_speed_mps(double aim_latitude_rad, double taem_energy_Jpkg, double altitude_m);
   /// The altitude term of taem_band_depth alone. Needs altitude_tol_m > 0.
   static double taem_altitude_depth(const config::TaemInterface& taem, double altitude_m);
   /// Drag acceleration D = rho V^2 CD S / (2 m)  (D.1).

@@ -117,7 +117,7 @@ double EntryPlanner::taem_box_altitude(const config::Mission& mission) const {
   const double alpha_taem = alpha_profile_.alpha_rad(taem_energy_ / entry_energy_);
   for (int i = 0; i <= kTaemBoxSamples; ++i) {
     const double h = t.altitude_m + t.altitude_tol_m * (2.0 * i / kTaemBoxSamples - 1.0);
-    const double v = OnboardModels::taem_speed_mps(t, taem_energy_, h);
+    const double v = OnboardModels::taem_speed_mps(t.latitude_rad, taem_energy_, h);
     if (!(v > 0.0)) continue;
     // The TAEM state must itself satisfy the dynamic-pressure constraints at the TAEM alpha.
     const double q = 0.5 * models_.atmosphere().density_kgpm3(h) * v * v;
@@ -585,7 +585,7 @@ Status EntryPlanner::prepare_corridor(double d_actual) {
   diag_.di_mps2 = initial_drag_ == InitialDrag::kActual ? d_actual : d_min_[0];
   if (diag_.di_mps2 < kDragFloor_mps2) diag_.di_mps2 = kDragFloor_mps2;
   diag_.df_mps2 = models_.drag_mps2(alpha_[kGrid - 1], taem_drag_altitude_m_,
-                                    velocity_from_energy_mps(taem_energy_, surface_radius_m(taem_lat_) + taem_drag_altitude_m_));
+                                    OnboardModels::taem_speed_mps(taem_lat_, taem_energy_, taem_drag_altitude_m_));
   return Status::kOk;
 }
 
