@@ -236,6 +236,11 @@ EntryTracker::LateralTarget EntryTracker::lateral_target(const RelativeState& s)
   return t;
 }
 
+bool EntryTracker::in_final_reversal_window(double t_go_s) const {
+  // The last kFinalReversalWindow reversal durations 2 sigma / sigma_rate at the mean bank.
+  return mean_sigma_d_rad_ > 0.0 && t_go_s < kFinalReversalWindow * 2.0 * mean_sigma_d_rad_ / sigma_rate_max_radps_;
+}
+
 double EntryTracker::flown_bank_rad() const {
   // The rate filter's output when the stack provides it, else the tracker's own last command.
   return flown_alpha_rad_ >= 0.0 ? flown_sigma_rad_ : last_sign_ * last_sigma_d_rad_;
@@ -698,9 +703,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   // past 90 deg turns the vehicle on after the final reversal (X-33 seeds 320, 408, 426, 460,
   // 506 ended 10-12 deg off heading with it, 2-5 deg without). Barred over the whole terminal
   // phase, the runs that need much more drag there flew on at 90 deg (seed 462: 33 km long).
-  const bool in_final_window =
-      terminal && mean_sigma_d_rad_ > 0.0 && t_go_s < kFinalReversalWindow * 2.0 * mean_sigma_d_rad_ / sigma_rate_max_radps_;
-  u_drag = clamp(u_drag, in_final_window ? 0.0 : -lod, lod);
+  u_drag = clamp(u_drag, terminal && in_final_reversal_window(t_go_s) ? 0.0 : -lod, lod);
   out.u_drag = u_drag;
   const double sigma_d = std::acos(clamp(u_drag / lod, -1.0, 1.0));          // (3.20)
 
@@ -739,14 +742,13 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   mean_sigma_d_rad_ = mean_sigma_d_rad_ < 0.0 ? sigma_d
                                               : mean_sigma_d_rad_ + clamp(dt_s / kMeanBankTimeConstant_s, 0.0, 1.0) *
                                                                         (sigma_d - mean_sigma_d_rad_);
-  const double t_rev_mean_s = 2.0 * mean_sigma_d_rad_ / sigma_rate_max_radps_;
   if (lateral_corridor && last_sign_ != 0) {
     const double err_to_target = wrap_pi(chi - target.heading_rad);
     const double e_taem_norm = taem_energy_Jpkg_ / entry_energy_Jpkg_;
     const double x = clamp((e_norm - e_taem_norm) / (lateral_e_norm_ - e_taem_norm), 0.0, 1.0);
     const double corridor = kCorridorMin_rad + (kCorridorMax_rad - kCorridorMin_rad) * x;
     sign_ref = last_sign_;
-    if (t_go_s < kFinalReversalWindow * t_rev_mean_s) {
+    if (in_final_reversal_window(t_go_s)) {
       // The one last reversal starts when the TAEM state it leads to is balanced between
       // heading error and cross-track offset, weighted by the mission's tolerances (a corridor
       // reversal this late would leave the vehicle mid-swing); waiting moves both towards the

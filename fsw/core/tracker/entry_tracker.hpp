@@ -165,6 +165,8 @@ class EntryTracker {
   };
   LateralTarget lateral_target(const RelativeState& s) const;
   double flown_bank_rad() const;
+  /// Within the last kFinalReversalWindow reversal durations before TAEM (mean bank).
+  bool in_final_reversal_window(double t_go_s) const;
   bool modulation_allowed(double drag_ref, double drag_max) const;
   double modulated_alpha(double alpha_rad, double mach, double lift_ratio, double max_rad) const;
   double load_relief_alpha(double alpha_cmd_rad, double alpha_floor_rad, double alpha_flown_rad, double mach,
