@@ -1,6 +1,9 @@
 #include "evaluation/mission_verdict.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "environment/earth.hpp"
 
 namespace reentry::truth {
 
@@ -27,6 +30,25 @@ std::vector<std::string> path_constraint_violations(const config::PathConstraint
   return v;
 }
 
+ArrivalLineOffset arrival_line_offset(double lat_rad, double lon_rad, double aim_lat_rad, double aim_lon_rad,
+                                      double line_heading_rad) {
+  // Right spherical triangle aim point - foot on the line - vehicle: hypotenuse delta (arc from
+  // the aim point to the vehicle), angle theta at the aim point between the line and the
+  // bearing to the vehicle. sin(xt) = sin(delta) sin(theta), tan(at) = tan(delta) cos(theta).
+  const double dlon = lon_rad - aim_lon_rad;
+  const double cos_delta = std::sin(aim_lat_rad) * std::sin(lat_rad) +
+                           std::cos(aim_lat_rad) * std::cos(lat_rad) * std::cos(dlon);
+  const double y = std::sin(dlon) * std::cos(lat_rad);
+  const double x = std::cos(aim_lat_rad) * std::sin(lat_rad) - std::sin(aim_lat_rad) * std::cos(lat_rad) * std::cos(dlon);
+  const double sin_delta = std::hypot(x, y);  // |aim x vehicle| for unit vectors
+  const double theta = std::atan2(y, x) - line_heading_rad;
+  const double R = EarthConstants::kEquatorialRadius_m;
+  ArrivalLineOffset o;
+  o.cross_m = R * std::asin(std::clamp(sin_delta * std::sin(theta), -1.0, 1.0));
+  o.along_m = R * std::atan2(sin_delta * std::cos(theta), cos_delta);
+  return o;
+}
+
 MissionVerdict judge_mission(const config::Mission& mission, const RunSummary& summary,
                              const CommandRateMaxima& rates) {
   MissionVerdict v;
@@ -44,6 +66,10 @@ MissionVerdict judge_mission(const config::Mission& mission, const RunSummary& s
   v.reached_taem = summary.event == SimEvent::kTaemEnergy;
   if (!v.reached_taem) v.violations.emplace_back(std::string("event_") + to_string(summary.event));
   v.taem_miss_m = f.range_to_taem_m;
+  const ArrivalLineOffset split =
+      arrival_line_offset(f.lat_rad, f.lon_rad, taem.latitude_rad, taem.longitude_rad, taem.heading_rad);
+  v.miss_along_m = split.along_m;
+  v.miss_cross_m = split.cross_m;
   v.altitude_err_m = f.h_m - taem.altitude_m;
   v.mach = f.mach;
   v.heading_err_rad = wrap_pi(f.chi_rad - taem.heading_rad);

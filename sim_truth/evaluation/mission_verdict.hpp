@@ -22,6 +22,10 @@ struct MissionVerdict {
   bool success = false;
   bool reached_taem = false;        // the TAEM energy event ended the run
   double taem_miss_m = 0.0;         // great-circle distance to the aim point at the event
+  // The miss split along the arrival line (the great circle through the aim point on the
+  // required TAEM heading), on the same R_eq sphere as taem_miss_m:
+  double miss_along_m = 0.0;        // along the line, > 0 past the aim point (long)
+  double miss_cross_m = 0.0;        // across it, > 0 right of the line (looking along the heading)
   double altitude_err_m = 0.0;      // final altitude - TAEM altitude
   double mach = 0.0;
   double mach_err = 0.0;            // final Mach - target (0 when no target)
@@ -39,6 +43,16 @@ std::vector<std::string> path_constraint_violations(const config::PathConstraint
 
 MissionVerdict judge_mission(const config::Mission& mission, const RunSummary& summary,
                              const CommandRateMaxima& rates);
+
+/// Along- and cross-track distance of a point from the great circle through an aim point on
+/// a given heading, on the R_eq sphere (geocentric latitudes): along > 0 ahead of the aim
+/// point, cross > 0 to the right of the line.
+struct ArrivalLineOffset {
+  double along_m = 0.0;
+  double cross_m = 0.0;
+};
+ArrivalLineOffset arrival_line_offset(double lat_rad, double lon_rad, double aim_lat_rad, double aim_lon_rad,
+                                      double line_heading_rad);
 
 /// Wrap an angle to (-pi, pi].
 double wrap_pi(double angle_rad);

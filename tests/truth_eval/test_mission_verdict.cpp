@@ -123,5 +123,60 @@ TEST(MissionVerdict, MachAndFlightPathOnlyWhenTheMissionSpecifiesThem) {
   EXPECT_NEAR(v.mach_err, 0.35, 1e-12);
 }
 
+// Destination point at arc d from (lat1, lon1) on the initial bearing b (spherical
+// trigonometry, independent of the verdict's triangle formulas).
+void destination(double lat1, double lon1, double b, double d, double& lat2, double& lon2) {
+  lat2 = std::asin(std::sin(lat1) * std::cos(d) + std::cos(lat1) * std::sin(d) * std::cos(b));
+  lon2 = lon1 + std::atan2(std::sin(b) * std::sin(d) * std::cos(lat1), std::cos(d) - std::sin(lat1) * std::sin(lat2));
+}
+
+TEST(MissionVerdict, MissSplitsAlongAndAcrossTheArrivalLine) {
+  // X-33 aim point and arrival heading; vehicles placed by great-circle steps from it.
+  constexpr double kDeg = M_PI / 180.0, R = 6378137.0;
+  const double aim_lat = 28.7 * kDeg, aim_lon = -80.5 * kDeg, chi_f = 50.444 * kDeg;
+  double lat, lon;
+  // 3 km past the aim point along the line: long, on the line.
+  destination(aim_lat, aim_lon, chi_f, 3000.0 / R, lat, lon);
+  ArrivalLineOffset o = arrival_line_offset(lat, lon, aim_lat, aim_lon, chi_f);
+  EXPECT_NEAR(o.along_m, 3000.0, 1e-6);
+  EXPECT_NEAR(o.cross_m, 0.0, 1e-6);
+  // 5 km short of it, behind on the line.
+  destination(aim_lat, aim_lon, chi_f + M_PI, 5000.0 / R, lat, lon);
+  o = arrival_line_offset(lat, lon, aim_lat, aim_lon, chi_f);
+  EXPECT_NEAR(o.along_m, -5000.0, 1e-6);
+  EXPECT_NEAR(o.cross_m, 0.0, 1e-6);
+  // 2 km along the line, then 4 km off it at right angles to the line's local heading
+  // (the back-azimuth to the aim point, reversed): the foot of that point is 2 km on.
+  destination(aim_lat, aim_lon, chi_f, 2000.0 / R, lat, lon);
+  const double dl = aim_lon - lon;
+  const double back = std::atan2(std::sin(dl) * std::cos(aim_lat),
+                                 std::cos(lat) * std::sin(aim_lat) - std::sin(lat) * std::cos(aim_lat) * std::cos(dl));
+  double lat_r, lon_r;
+  destination(lat, lon, back + M_PI + M_PI / 2.0, 4000.0 / R, lat_r, lon_r);
+  o = arrival_line_offset(lat_r, lon_r, aim_lat, aim_lon, chi_f);
+  EXPECT_NEAR(o.along_m, 2000.0, 1e-3);
+  EXPECT_NEAR(o.cross_m, 4000.0, 1e-3);
+  // And mirrored to the left.
+  destination(lat, lon, back + M_PI - M_PI / 2.0, 4000.0 / R, lat_r, lon_r);
+  o = arrival_line_offset(lat_r, lon_r, aim_lat, aim_lon, chi_f);
+  EXPECT_NEAR(o.along_m, 2000.0, 1e-3);
+  EXPECT_NEAR(o.cross_m, -4000.0, 1e-3);
+}
+
+TEST(MissionVerdict, VerdictCarriesTheMissSplit) {
+  // A run ending 6 km due east of an aim point approached heading north: 6 km right, on the
+  // line's normal through the aim point (along-track 0 to second order).
+  auto m = x33_like();
+  m.taem.latitude_rad = 0.0;
+  m.taem.longitude_rad = 0.0;
+  m.taem.heading_rad = 0.0;
+  RunSummary r = nominal_run();
+  r.final_state.lat_rad = 0.0;
+  r.final_state.lon_rad = 6000.0 / 6378137.0;
+  const MissionVerdict v = judge_mission(m, r, {});
+  EXPECT_NEAR(v.miss_cross_m, 6000.0, 1e-6);
+  EXPECT_NEAR(v.miss_along_m, 0.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace reentry::truth

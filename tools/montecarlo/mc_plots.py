@@ -44,19 +44,28 @@ def main():
     plt.close(fig)
 
     fig, ax = plt.subplots(figsize=(8, 7))
-    near = [r for r in runs if r["miss_km"] < 60.0]
-    if near:
-        lat0 = sum(r["final_lat_deg"] for r in near) / len(near)
-    else:
-        lat0 = runs[0]["final_lat_deg"]
-    for group, colour, label in ((ok, "tab:green", "success"), (bad, "tab:red", "failure")):
-        xs = [r["final_lon_deg"] for r in group if r["miss_km"] < 60.0]
-        ys = [r["final_lat_deg"] for r in group if r["miss_km"] < 60.0]
-        ax.scatter(xs, ys, s=14, c=colour, label=f"{label} ({len(group)})")
-    ax.set_xlabel("longitude at TAEM energy [deg]")
-    ax.set_ylabel("latitude at TAEM energy [deg]")
+    if all("miss_along_km" in r for r in runs):
+        # Footprint in the arrival-line frame: across the line (> 0 right) against along it
+        # (> 0 past the aim point), the aim point at the origin.
+        for group, colour, label in ((ok, "tab:green", "success"), (bad, "tab:red", "failure")):
+            xs = [r["miss_cross_km"] for r in group if r["miss_km"] < 60.0]
+            ys = [r["miss_along_km"] for r in group if r["miss_km"] < 60.0]
+            ax.scatter(xs, ys, s=14, c=colour, label=f"{label} ({len(group)})")
+        ax.plot([0.0], [0.0], "k+", ms=14, mew=2, label="aim point")
+        ax.set_xlabel("across the arrival line at TAEM energy [km] (> 0 right)")
+        ax.set_ylabel("along the arrival line at TAEM energy [km] (> 0 past the aim point)")
+        ax.set_aspect("equal", adjustable="datalim")
+    else:  # run files written before the miss split
+        near = [r for r in runs if r["miss_km"] < 60.0]
+        lat0 = sum(r["final_lat_deg"] for r in near) / len(near) if near else runs[0]["final_lat_deg"]
+        for group, colour, label in ((ok, "tab:green", "success"), (bad, "tab:red", "failure")):
+            xs = [r["final_lon_deg"] for r in group if r["miss_km"] < 60.0]
+            ys = [r["final_lat_deg"] for r in group if r["miss_km"] < 60.0]
+            ax.scatter(xs, ys, s=14, c=colour, label=f"{label} ({len(group)})")
+        ax.set_xlabel("longitude at TAEM energy [deg]")
+        ax.set_ylabel("latitude at TAEM energy [deg]")
+        ax.set_aspect(1.0 / max(math.cos(math.radians(lat0)), 0.1), adjustable="datalim")
     ax.set_title(title + " (runs within 60 km shown)")
-    ax.set_aspect(1.0 / max(math.cos(math.radians(lat0)), 0.1), adjustable="datalim")
     ax.legend()
     ax.grid(alpha=0.4)
     fig.tight_layout()

@@ -47,6 +47,8 @@ json run_record(int run, const ClosedLoopResult& r) {
   j["error"] = r.error;
   j["event"] = reentry::truth::to_string(r.summary.event);
   j["miss_km"] = r.verdict.taem_miss_m * 1e-3;
+  j["miss_along_km"] = r.verdict.miss_along_m * 1e-3;
+  j["miss_cross_km"] = r.verdict.miss_cross_m * 1e-3;
   j["alt_err_km"] = r.verdict.altitude_err_m * 1e-3;
   j["mach"] = r.verdict.mach;
   j["heading_err_deg"] = r.verdict.heading_err_rad * kDeg;
@@ -126,13 +128,15 @@ std::vector<json> read_runs(const std::vector<std::string>& dirs, std::string* e
 
 json summarise(const std::vector<json>& runs, const std::string& mission) {
   using reentry::tools::percentile;
-  std::vector<double> miss, alt, mach, heading, qdot, g, q, qa, plan_ms, wall;
+  std::vector<double> miss, along, cross, alt, mach, heading, qdot, g, q, qa, plan_ms, wall;
   json failed = json::array();
   int successes = 0;
   for (const auto& r : runs) {
     if (r["success"].get<bool>()) ++successes;
     else failed.push_back(r["seed"]);
     miss.push_back(r["miss_km"]);
+    if (r.contains("miss_along_km")) along.push_back(r["miss_along_km"]);  // absent in older run files
+    if (r.contains("miss_cross_km")) cross.push_back(r["miss_cross_km"]);
     alt.push_back(std::fabs(r["alt_err_km"].get<double>()));
     mach.push_back(r["mach"]);
     heading.push_back(std::fabs(r["heading_err_deg"].get<double>()));
@@ -158,6 +162,12 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
   rep["miss_km_p50"] = percentile(miss, 50);
   rep["miss_km_p95"] = percentile(miss, 95);
   rep["miss_km_max"] = percentile(miss, 100);
+  // Bias and spread of the miss split along the arrival line (> 0: long / right of it).
+  auto spread = [&](const std::vector<double>& v) {
+    return json{{"p5", percentile(v, 5)}, {"p50", percentile(v, 50)}, {"p95", percentile(v, 95)}};
+  };
+  if (!along.empty()) rep["miss_along_km"] = spread(along);
+  if (!cross.empty()) rep["miss_cross_km"] = spread(cross);
   rep["failed_seeds"] = failed;
   rep["altitude_err_km_abs"] = dist(alt);
   rep["mach"] = {{"p5", percentile(mach, 5)}, {"p50", percentile(mach, 50)}, {"p95", percentile(mach, 95)}};
@@ -211,6 +221,14 @@ int write_report(const std::vector<std::string>& dirs, const std::string& out, c
               name.c_str(), rep["successes"].get<int>(), rep["runs"].get<int>(), 100.0 * rep["success_rate"].get<double>(),
               100.0 * rep["ci95_low"].get<double>(), 100.0 * rep["ci95_high"].get<double>(),
               rep["miss_km_p50"].get<double>(), rep["miss_km_p95"].get<double>(), rep["miss_km_max"].get<double>());
+  if (rep.contains("miss_along_km") && rep.contains("miss_cross_km")) {
+    const json& a = rep["miss_along_km"];
+    const json& c = rep["miss_cross_km"];
+    std::printf("%s: miss along the arrival line p50 %+.2f km (p5 %+.2f, p95 %+.2f; > 0 long), across it p50 %+.2f km "
+                "(p5 %+.2f, p95 %+.2f; > 0 right)\n",
+                name.c_str(), a["p50"].get<double>(), a["p5"].get<double>(), a["p95"].get<double>(),
+                c["p50"].get<double>(), c["p5"].get<double>(), c["p95"].get<double>());
+  }
   if (rep.contains("pullout_bound")) {
     const json& b = rep["pullout_bound"];
     std::printf("%s: wings-level pull-out at alpha_max exceeds a path constraint in %d/%d runs: success rate <= %.1f %%\n",

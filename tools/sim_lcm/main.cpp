@@ -264,6 +264,8 @@ int main(int argc, char** argv) {
     j["event"] = exit_code == kExitOk ? reentry::truth::to_string(summary.event) : "link_loss";
     j["success"] = exit_code == kExitOk && verdict.success;
     j["taem_miss_km"] = f.range_to_taem_m * 1e-3;
+    j["miss_along_km"] = verdict.miss_along_m * 1e-3;  // > 0: past the aim point
+    j["miss_cross_km"] = verdict.miss_cross_m * 1e-3;  // > 0: right of the arrival line
     j["final_alt_km"] = f.h_m * 1e-3;
     j["final_mach"] = f.mach;
     j["final_gamma_deg"] = f.gamma_rad * 180.0 / M_PI;
