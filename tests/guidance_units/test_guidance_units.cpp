@@ -643,6 +643,67 @@ TEST(Tracker, ReversalModulationNeverRemovesLiftTheDragLoopAsksFor) {
   }
 }
 
+TEST(Tracker, ACorridorReversalEndingInTheFinalWindowGetsTheFullModulation) {
+  // Terminal phase, drag at 60 % of the reference (the loop asks for lift down, far past 90
+  // deg: the lift ratio of the roll falls to its floor 0.3), heading past the corridor edge: a
+  // corridor reversal starts. Started 150 s before TAEM it ends long before the
+  // final-reversal window and its modulation is limited to the corridor depth (6 deg), which
+  // cannot reach that ratio; started so that it ends inside the window (but begins outside
+  // it), it gets the final reversal's depth (15 deg). The window 2 x 2 sigma_mean / sigma_rate and the roll 2 sigma0 / sigma_rate are
+  // computed here from the commanded banks and the tracker's time-to-go estimate.
+  auto probe = mid_profile_tracker(0.0);
+  ASSERT_NE(probe, nullptr);
+  const ReferenceProfile& p = *probe->profile;
+  const int last = p.n_points - 1;
+  const double rate = probe->mission.constraints.sigma_rate_max_radps;
+  auto index_at = [&](double t_go_s) {
+    int k = last;
+    while (k > 0 && profile_time_to_go_s(p, k) < t_go_s) --k;
+    return k;
+  };
+  constexpr double kDeg = M_PI / 180.0;
+  OnboardModels models;
+  ASSERT_EQ(models.init(probe->mission), Status::kOk);
+  for (const double t_go_target : {150.0, 65.0}) {
+    auto m = mid_profile_tracker(static_cast<double>(index_at(t_go_target)) / last);
+    ASSERT_NE(m, nullptr);
+    RelativeState s = m->state;
+    ASSERT_LT(s.energy_Jpkg, m->tracker.terminal_energy_Jpkg());
+    TrackerOutput out;
+    ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
+    ASSERT_EQ(out.phase, Phase::kTracking);
+    const double sigma1 = out.sigma_d_rad, alpha_ref = out.alpha_rad;
+    const double sign = out.sigma_rad >= 0.0 ? 1.0 : -1.0;
+    s.t_s += 0.1;
+    s.heading_rad += sign * 20.0 * kDeg;
+    s.drag_mps2 *= 0.6;
+    s.lift_mps2 *= 0.6;
+    m->tracker.set_flown_attitude(alpha_ref, sign * 20.0 * kDeg);
+    ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
+    ASSERT_EQ(out.phase, Phase::kReversal);
+    ASSERT_LT(out.sigma_rad * sign, 0.0);
+    const double sigma0 = out.sigma_d_rad;
+    ASSERT_GT(sigma0, 85.0 * kDeg);
+    const double mean = sigma1 + 0.01 * (sigma0 - sigma1);  // 0.1 s of the 10 s bank average
+    const double window_s = 2.0 * 2.0 * mean / rate, roll_s = 2.0 * sigma0 / rate;
+    const double v_f = std::fmin(m->mission.taem.velocity_mps, s.velocity_mps);
+    const double t_go = (s.energy_Jpkg - p.taem_energy_Jpkg) / (s.drag_mps2 * 0.5 * (s.velocity_mps + v_f));
+    ASSERT_GT(t_go, window_s + 1.0);  // a corridor reversal, not the final one
+    const bool ends_in_window = t_go - roll_s < window_s - 1.0;
+    ASSERT_EQ(ends_in_window, t_go_target < 100.0) << t_go << " " << roll_s << " " << window_s;
+    if (ends_in_window) {
+      EXPECT_LT(out.alpha_rad, alpha_ref - 7.0 * kDeg);
+      EXPECT_GE(out.alpha_rad, alpha_ref - 15.0 * kDeg - 1e-9);
+    } else {
+      // The lift ratio 0.3 is out of reach within the corridor depth: alpha stays (a
+      // modulation held at the depth only costs drag).
+      const double mach = models.mach(s.altitude_m, s.velocity_mps);
+      ASSERT_GT(models.aero().cl(alpha_ref - 6.0 * kDeg, mach), 0.3 * models.aero().cl(alpha_ref, mach));
+      EXPECT_NEAR(out.alpha_rad, alpha_ref, 1e-12);
+    }
+  }
+}
+
 TEST(Tracker, NoLiftDownInTheFinalReversalWindow) {
   // Sensed drag at half the reference: the drag loop asks for lift down. 10 s before TAEM
   // (inside the final-reversal window, twice the reversal time 2 sigma / sigma_rate at about

@@ -218,6 +218,7 @@ class EntryTracker {
   double reversal_until_t_s_ = -1.0;
   double reversal_start_t_s_ = -1.0;  // start of the last reversal
   double reversal_sigma0_rad_ = 0.0;  // bank magnitude at its start
+  bool reversal_ends_in_final_window_ = false;  // judged at its start on the time to go
 };
 
 }  // namespace reentry::fsw
