@@ -428,6 +428,12 @@ double profile_time_to_go_s(const ReferenceProfile& p, int j) {
   const int last = p.n_points - 1;
   return (p.energy_Jpkg[j] - p.energy_Jpkg[last]) / (p.drag_mps2[j] * 0.5 * (p.velocity_mps[j] + p.velocity_mps[last]));
 }
+// Last profile point at least t_go_s before TAEM (by profile_time_to_go_s).
+int profile_index_at_time_to_go(const ReferenceProfile& p, double t_go_s) {
+  int k = p.n_points - 1;
+  while (k > 0 && profile_time_to_go_s(p, k) < t_go_s) --k;
+  return k;
+}
 }  // namespace
 
 TEST(Tracker, DragReferenceNeverExceedsTheSensedConstraintBound) {
@@ -656,16 +662,11 @@ TEST(Tracker, ACorridorReversalEndingInTheFinalWindowGetsTheFullModulation) {
   const ReferenceProfile& p = *probe->profile;
   const int last = p.n_points - 1;
   const double rate = probe->mission.constraints.sigma_rate_max_radps;
-  auto index_at = [&](double t_go_s) {
-    int k = last;
-    while (k > 0 && profile_time_to_go_s(p, k) < t_go_s) --k;
-    return k;
-  };
   constexpr double kDeg = M_PI / 180.0;
   OnboardModels models;
   ASSERT_EQ(models.init(probe->mission), Status::kOk);
   for (const double t_go_target : {150.0, 65.0}) {
-    auto m = mid_profile_tracker(static_cast<double>(index_at(t_go_target)) / last);
+    auto m = mid_profile_tracker(static_cast<double>(profile_index_at_time_to_go(p, t_go_target)) / last);
     ASSERT_NE(m, nullptr);
     RelativeState s = m->state;
     ASSERT_LT(s.energy_Jpkg, m->tracker.terminal_energy_Jpkg());
@@ -714,12 +715,7 @@ TEST(Tracker, NoLiftDownInTheFinalReversalWindow) {
   ASSERT_NE(probe, nullptr);
   const ReferenceProfile& p = *probe->profile;
   const int last = p.n_points - 1;
-  auto t_go = [&](int j) { return profile_time_to_go_s(p, j); };
-  auto index_at = [&](double t_go_s) {
-    int k = last;
-    while (k > 0 && t_go(k) < t_go_s) --k;
-    return k;
-  };
+  auto index_at = [&](double t_go_s) { return profile_index_at_time_to_go(p, t_go_s); };
   int k_mid = last;  // above the terminal phase
   while (k_mid > 0 && p.energy_Jpkg[k_mid] < 1.1 * probe->tracker.terminal_energy_Jpkg()) --k_mid;
   struct Case { int k; bool barred; };
@@ -820,9 +816,7 @@ TEST(Tracker, OneCorrectionReversalStopsAFinalTurnThatOvershoots) {
   ASSERT_NE(m, nullptr);
   const ReferenceProfile& p = *m->profile;
   const int last = p.n_points - 1;
-  auto t_go = [&](int j) { return profile_time_to_go_s(p, j); };
-  int k = last;
-  while (k > 0 && t_go(k) < 30.0) --k;
+  const int k = profile_index_at_time_to_go(p, 30.0);
   ASSERT_GT(k, 0);
   double range_to_go_m = 0.0;  // S = -int dE / D (C.2)
   for (int j = k; j < last; ++j) {
