@@ -135,7 +135,7 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
     if (r["success"].get<bool>()) ++successes;
     else failed.push_back(r["seed"]);
     miss.push_back(r["miss_km"]);
-    if (r.contains("miss_along_km")) along.push_back(r["miss_along_km"]);  // absent in older run files
+    if (r.contains("miss_along_km")) along.push_back(r["miss_along_km"]);
     if (r.contains("miss_cross_km")) cross.push_back(r["miss_cross_km"]);
     alt.push_back(std::fabs(r["alt_err_km"].get<double>()));
     mach.push_back(r["mach"]);
@@ -166,8 +166,11 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
   auto spread = [&](const std::vector<double>& v) {
     return json{{"p5", percentile(v, 5)}, {"p50", percentile(v, 50)}, {"p95", percentile(v, 95)}};
   };
-  if (!along.empty()) rep["miss_along_km"] = spread(along);
-  if (!cross.empty()) rep["miss_cross_km"] = spread(cross);
+  // Only over the whole campaign: a merge with run files written before the split has none.
+  if (along.size() == runs.size() && cross.size() == runs.size() && !runs.empty()) {
+    rep["miss_along_km"] = spread(along);
+    rep["miss_cross_km"] = spread(cross);
+  }
   rep["failed_seeds"] = failed;
   rep["altitude_err_km_abs"] = dist(alt);
   rep["mach"] = {{"p5", percentile(mach, 5)}, {"p50", percentile(mach, 50)}, {"p95", percentile(mach, 95)}};
