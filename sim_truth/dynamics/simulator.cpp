@@ -526,13 +526,9 @@ TruthSample Simulator::sample() const {
   s.elevon_rad = d.elevon;
   s.q_alpha_Pa_rad = d.q * d.alpha;
   // Great circle to the aim point (geocentric latitudes on the R_eq sphere).
-  const double lat2 = mission_.taem.latitude_rad, dlon = mission_.taem.longitude_rad - d.lon;
-  const Vec3 n1(std::cos(d.lat) * std::cos(d.lon), std::cos(d.lat) * std::sin(d.lon), std::sin(d.lat));
-  const Vec3 n2(std::cos(lat2) * std::cos(mission_.taem.longitude_rad),
-                std::cos(lat2) * std::sin(mission_.taem.longitude_rad), std::sin(lat2));
-  s.range_to_taem_m = std::atan2(n1.cross(n2).norm(), n1.dot(n2)) * EarthConstants::kEquatorialRadius_m;
-  s.heading_to_taem_rad = std::atan2(std::sin(dlon) * std::cos(lat2),
-                                     std::cos(d.lat) * std::sin(lat2) - std::sin(d.lat) * std::cos(lat2) * std::cos(dlon));
+  const GreatCircleLeg to_aim = great_circle_leg(d.lat, d.lon, mission_.taem.latitude_rad, mission_.taem.longitude_rad);
+  s.range_to_taem_m = to_aim.arc_rad * EarthConstants::kEquatorialRadius_m;
+  s.heading_to_taem_rad = to_aim.initial_bearing_rad;
   return s;
 }
 

@@ -22,6 +22,14 @@ double altitude_m(const Eigen::Vector3d& r_R, ShapeModel shape);
 /// delta: the inverse of altitude_m, r = h + Re (1 - f sin^2(delta)) for the oblate shape.
 double radius_at_altitude_m(double geocentric_latitude_rad, double altitude_m, ShapeModel shape);
 
+/// Great circle from point 1 to point 2 on a sphere (geocentric latitudes): the central
+/// angle between them and the initial bearing at point 1 (from north, clockwise).
+struct GreatCircleLeg {
+  double arc_rad = 0.0;
+  double initial_bearing_rad = 0.0;
+};
+GreatCircleLeg great_circle_leg(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad);
+
 /// Geocentric latitude delta of a position in the rotating frame R.
 double geocentric_latitude_rad(const Eigen::Vector3d& r_R);
 

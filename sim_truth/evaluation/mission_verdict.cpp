@@ -35,13 +35,9 @@ ArrivalLineOffset arrival_line_offset(double lat_rad, double lon_rad, double aim
   // Right spherical triangle aim point - foot on the line - vehicle: hypotenuse delta (arc from
   // the aim point to the vehicle), angle theta at the aim point between the line and the
   // bearing to the vehicle. sin(xt) = sin(delta) sin(theta), tan(at) = tan(delta) cos(theta).
-  const double dlon = lon_rad - aim_lon_rad;
-  const double cos_delta = std::sin(aim_lat_rad) * std::sin(lat_rad) +
-                           std::cos(aim_lat_rad) * std::cos(lat_rad) * std::cos(dlon);
-  const double y = std::sin(dlon) * std::cos(lat_rad);
-  const double x = std::cos(aim_lat_rad) * std::sin(lat_rad) - std::sin(aim_lat_rad) * std::cos(lat_rad) * std::cos(dlon);
-  const double sin_delta = std::hypot(x, y);  // |aim x vehicle| for unit vectors
-  const double theta = std::atan2(y, x) - line_heading_rad;
+  const GreatCircleLeg from_aim = great_circle_leg(aim_lat_rad, aim_lon_rad, lat_rad, lon_rad);
+  const double theta = from_aim.initial_bearing_rad - line_heading_rad;
+  const double sin_delta = std::sin(from_aim.arc_rad), cos_delta = std::cos(from_aim.arc_rad);
   const double R = EarthConstants::kEquatorialRadius_m;
   ArrivalLineOffset o;
   o.cross_m = R * std::asin(std::clamp(sin_delta * std::sin(theta), -1.0, 1.0));
