@@ -390,6 +390,28 @@ TEST(FinalTurn, DeceleratingTurnAndSymmetricReversalMatchTheirIntegrals) {
   EXPECT_EQ(predict_final_turn(in).heading_err_rad, 0.1);
 }
 
+TEST(FinalTurn, OvershootIsTheCircularArcPastTheLine) {
+  // Independent truth: approaching the line at psi0 from y0 and turning away at constant speed
+  // and bank on a circle of radius R = V^2 / (L_h sin|sigma|), the vehicle runs
+  // R (1 - cos psi0) towards the line until it is parallel to it: past the line by
+  // R (1 - cos psi0) - |y0| when that is positive, not at all otherwise. Mirrored sides agree.
+  for (const double side : {1.0, -1.0}) {
+    FinalTurnInput in;
+    in.speed_mps = in.taem_speed_mps = 2000.0;
+    in.t_go_s = 40.0;  // turned 10 deg after 17.5 s: the extremum lies inside the prediction
+    in.lift_horizontal_mps2 = 20.0 / std::sin(60.0 * M_PI / 180.0);
+    in.sigma_now_rad = in.sigma_end_rad = -side * 60.0 * M_PI / 180.0;
+    in.sigma_rate_radps = 5.0 * M_PI / 180.0;
+    in.heading_err_rad = side * 10.0 * M_PI / 180.0;
+    const double radius_m = in.speed_mps * in.speed_mps / 20.0;  // 200 km
+    const double run_in_m = radius_m * (1.0 - std::cos(10.0 * M_PI / 180.0));
+    in.cross_track_m = side * 1000.0;
+    EXPECT_NEAR(predict_final_turn(in).overshoot_m, run_in_m - 1000.0, 5.0) << side;
+    in.cross_track_m = side * (run_in_m + 1000.0);
+    EXPECT_EQ(predict_final_turn(in).overshoot_m, 0.0) << side;
+  }
+}
+
 namespace {
 // A tracker flying mid-profile (captured, level) and the state it was given.
 struct MidProfile {
@@ -433,6 +455,29 @@ int profile_index_at_time_to_go(const ReferenceProfile& p, double t_go_s) {
   int k = p.n_points - 1;
   while (k > 0 && profile_time_to_go_s(p, k) < t_go_s) --k;
   return k;
+}
+// The plan's range to go from profile point k, S = -int dE / D (C.2), trapezoidal.
+double profile_range_to_go_m(const ReferenceProfile& p, int k) {
+  double range_m = 0.0;
+  for (int j = k; j < p.n_points - 1; ++j) {
+    range_m += (p.energy_Jpkg[j] - p.energy_Jpkg[j + 1]) * 0.5 * (1.0 / p.drag_mps2[j] + 1.0 / p.drag_mps2[j + 1]);
+  }
+  return range_m;
+}
+// Places st at great-circle distance distance_m from the TAEM aim point, on the bearing
+// (seen from the aim point) offset_rad from the reversed arrival heading (spherical
+// destination formula); returns the azimuth from st to the aim point.
+double place_from_aim_point(const config::TaemInterface& taem, double distance_m, double offset_rad,
+                            RelativeState& st) {
+  const double back = taem.heading_rad + M_PI + offset_rad, arc = distance_m / kEarthRadius_m;
+  st.latitude_rad = std::asin(std::sin(taem.latitude_rad) * std::cos(arc) +
+                              std::cos(taem.latitude_rad) * std::sin(arc) * std::cos(back));
+  st.longitude_rad = taem.longitude_rad + std::atan2(std::sin(back) * std::sin(arc) * std::cos(taem.latitude_rad),
+                                                     std::cos(arc) - std::sin(taem.latitude_rad) * std::sin(st.latitude_rad));
+  const double dlon = taem.longitude_rad - st.longitude_rad;
+  return std::atan2(std::sin(dlon) * std::cos(taem.latitude_rad),
+                    std::cos(st.latitude_rad) * std::sin(taem.latitude_rad) -
+                        std::sin(st.latitude_rad) * std::cos(taem.latitude_rad) * std::cos(dlon));
 }
 }  // namespace
 
@@ -815,13 +860,9 @@ TEST(Tracker, OneCorrectionReversalStopsAFinalTurnThatOvershoots) {
   auto m = mid_profile_tracker(0.0);
   ASSERT_NE(m, nullptr);
   const ReferenceProfile& p = *m->profile;
-  const int last = p.n_points - 1;
   const int k = profile_index_at_time_to_go(p, 30.0);
   ASSERT_GT(k, 0);
-  double range_to_go_m = 0.0;  // S = -int dE / D (C.2)
-  for (int j = k; j < last; ++j) {
-    range_to_go_m += (p.energy_Jpkg[j] - p.energy_Jpkg[j + 1]) * 0.5 * (1.0 / p.drag_mps2[j] + 1.0 / p.drag_mps2[j + 1]);
-  }
+  const double range_to_go_m = profile_range_to_go_m(p, k);
   const config::TaemInterface& taem = m->mission.taem;
   RelativeState s0{};
   s0.radius_m = p.radius_m[k];
@@ -831,17 +872,7 @@ TEST(Tracker, OneCorrectionReversalStopsAFinalTurnThatOvershoots) {
   s0.drag_mps2 = p.drag_mps2[k];
   s0.lift_mps2 = p.drag_mps2[k] * p.lift_over_drag[k];
   double line = 0.0;  // heading of the line at the vehicle: the azimuth from it to the aim point
-  auto place = [&](RelativeState& st, double distance_m) {
-    const double back = taem.heading_rad + M_PI, arc = distance_m / kEarthRadius_m;
-    st.latitude_rad = std::asin(std::sin(taem.latitude_rad) * std::cos(arc) +
-                                std::cos(taem.latitude_rad) * std::sin(arc) * std::cos(back));
-    st.longitude_rad = taem.longitude_rad + std::atan2(std::sin(back) * std::sin(arc) * std::cos(taem.latitude_rad),
-                                                       std::cos(arc) - std::sin(taem.latitude_rad) * std::sin(st.latitude_rad));
-    const double dlon = taem.longitude_rad - st.longitude_rad;
-    line = std::atan2(std::sin(dlon) * std::cos(taem.latitude_rad),
-                      std::cos(st.latitude_rad) * std::sin(taem.latitude_rad) -
-                          std::sin(st.latitude_rad) * std::cos(taem.latitude_rad) * std::cos(dlon));
-  };
+  auto place = [&](RelativeState& st, double distance_m) { line = place_from_aim_point(taem, distance_m, 0.0, st); };
   TrackerOutput out;
   // Captured level (the pull-out done), then on the planned flight path, heading 5 deg short
   // of the line on the side the bank turns from.
@@ -956,6 +987,61 @@ TEST(Tracker, OneCorrectionReversalStopsAFinalTurnThatOvershoots) {
   s.heading_rad = line - sign * 60.0 * kDeg;
   ASSERT_EQ(fly(t, s), Status::kOk);
   EXPECT_GT(out.sigma_rad * sign, 0.0);
+}
+
+TEST(Tracker, CaptureGuardTurnsAwayBeforeTheLineIsOvershot) {
+  // X-33 in the lateral corridor, 200 s before TAEM, 40 km off the arrival line on the side
+  // its bank turns towards, on the plan's drag (3.1 km/s, lift 13.2 m/s^2, bank 79 deg: turn
+  // radius R = V^2 / (L sin sigma) = 730 km). The heading target there is the approach-angle
+  // bound sqrt(2 k |y| / R), 21.6 deg, and the corridor is 3-4 deg wide. Approaching at 18 deg
+  // (inside the corridor) the turn away, started after a reversal of 2 sigma / sigma_rate =
+  // 32 s (flown 10-30 km closer), takes R (1 - cos 18 deg) = 36 km more: the vehicle would
+  // cross the line by more than the guard's 15 km, so the tracker reverses now (without the
+  // guard it keeps the bank: checked). Approaching at 3 deg (shallower than the target: the
+  // corridor keeps the turn towards the line) the same turn away runs in 1 + 5 km: the bank
+  // is kept.
+  auto m = mid_profile_tracker(0.0);
+  ASSERT_NE(m, nullptr);
+  const ReferenceProfile& p = *m->profile;
+  const int k = profile_index_at_time_to_go(p, 200.0);
+  ASSERT_GT(k, 0);
+  RelativeState s0{};
+  s0.radius_m = p.radius_m[k];
+  s0.altitude_m = p.radius_m[k] - kEarthRadius_m;
+  s0.velocity_mps = p.velocity_mps[k];
+  s0.energy_Jpkg = p.energy_Jpkg[k];
+  s0.drag_mps2 = p.drag_mps2[k];
+  s0.lift_mps2 = p.drag_mps2[k] * p.lift_over_drag[k];
+  ASSERT_LT(s0.energy_Jpkg, m->tracker.terminal_energy_Jpkg());  // the corridor starts before the terminal phase
+  const config::TaemInterface& taem = m->mission.taem;
+  const double distance_m = profile_range_to_go_m(p, k), cross_track_m = 40000.0;
+  for (const double approach_deg : {18.0, 3.0}) {
+    EntryTracker t = m->tracker;
+    RelativeState s = s0;
+    TrackerOutput out;
+    // First cycle level on the line (captured, the pull-out done): the bank sign it flies.
+    double line = place_from_aim_point(taem, distance_m, 0.0, s);
+    s.heading_rad = line;
+    ASSERT_EQ(t.step(s, 0.1, out), Status::kOk);
+    ASSERT_EQ(out.phase, Phase::kTracking);
+    s.flight_path_rad = p.gamma_rad[k];
+    const double sign = out.sigma_rad >= 0.0 ? 1.0 : -1.0;  // > 0: banked right
+    // Then 40 km off the line on the side the bank turns towards (the line on that side:
+    // y = R sin(offset), > 0 with the line to the right), approaching it.
+    line = place_from_aim_point(taem, distance_m, std::asin(sign * cross_track_m / distance_m), s) -
+           std::asin(sign * cross_track_m / distance_m);
+    s.heading_rad = line + sign * approach_deg * M_PI / 180.0;
+    s.t_s += 0.1;
+    t.set_flown_attitude(out.alpha_rad, out.sigma_rad);
+    ASSERT_EQ(t.step(s, 0.1, out), Status::kOk);
+    if (approach_deg > 10.0) {
+      EXPECT_EQ(out.phase, Phase::kReversal) << approach_deg;
+      EXPECT_LT(out.sigma_rad * sign, 0.0) << approach_deg;
+    } else {
+      EXPECT_EQ(out.phase, Phase::kTracking) << approach_deg;
+      EXPECT_GT(out.sigma_rad * sign, 0.0) << approach_deg;
+    }
+  }
 }
 
 TEST(Tracker, LiftOverDragEstimateConvergesToTheSensedRatio) {

@@ -34,6 +34,10 @@ constexpr double kApproachAngleMax_rad = 45.0 * M_PI / 180.0;
 constexpr double kCrossTrackScale_m = 30000.0;
 constexpr double kApproachTurnFactor = 1.5;
 constexpr double kAimMinRange_m = 1000.0;       // the offset angle is undefined closer than this
+// Capture guard (see step): past the line by more than half the field's cross-track scale,
+// the field's approach angle is no longer small and the heading corridor cannot take the
+// overshoot out before TAEM; closer than that the corridor and the final reversal govern.
+constexpr double kCaptureOvershoot_m = 0.5 * kCrossTrackScale_m;
 // Final reversal window: the last kFinalReversalWindow reversal durations before TAEM.
 constexpr double kFinalReversalWindow = 2.0;
 // Terminal range control: increment bounded to kTerminalDragScale of the reference drag,
@@ -451,8 +455,9 @@ double terminal_omega_floor_radps(double omega0_radps, double t_go_s) {
 
 FinalTurnState predict_final_turn(const FinalTurnInput& in) {
   // Midpoint rule over kFinalTurnSteps steps (bounded).
-  FinalTurnState out{in.heading_err_rad, in.cross_track_m};
+  FinalTurnState out{in.heading_err_rad, in.cross_track_m, 0.0};
   if (!(in.t_go_s > 0.0) || !(in.speed_mps > 0.0)) return out;
+  const double side = in.cross_track_m >= 0.0 ? 1.0 : -1.0;
   const double h = in.t_go_s / kFinalTurnSteps;
   const double v_f = std::fmin(in.taem_speed_mps, in.speed_mps);
   for (int i = 0; i < kFinalTurnSteps; ++i) {
@@ -463,6 +468,7 @@ FinalTurnState predict_final_turn(const FinalTurnInput& in) {
     const double turn = in.lift_horizontal_mps2 * std::sin(sigma) / speed * h;
     out.cross_track_m -= speed * std::sin(out.heading_err_rad + 0.5 * turn) * h;
     out.heading_err_rad += turn;
+    out.overshoot_m = std::fmax(out.overshoot_m, -side * out.cross_track_m);
   }
   return out;
 }
@@ -749,24 +755,29 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     const double x = clamp((e_norm - e_taem_norm) / (lateral_e_norm_ - e_taem_norm), 0.0, 1.0);
     const double corridor = kCorridorMin_rad + (kCorridorMax_rad - kCorridorMin_rad) * x;
     sign_ref = last_sign_;
-    if (in_final_reversal_window(t_go_s)) {
-      // The one last reversal starts when the TAEM state it leads to is balanced between
-      // heading error and cross-track offset, weighted by the mission's tolerances (a corridor
-      // reversal this late would leave the vehicle mid-swing); waiting moves both towards the
-      // present turn. Predicted with the roll from the bank flown to the mean bank magnitude
-      // on the other side.
+    // Heading and cross-track from now to TAEM with the bank rolled from the one flown to the
+    // mean bank magnitude on the side `sign` (the final-reversal timing and the capture guard).
+    auto turn_until_taem = [&](int sign) {
       FinalTurnInput in;
       in.speed_mps = V;
       in.taem_speed_mps = v_f;
       in.t_go_s = t_go_s;
       in.lift_horizontal_mps2 = s.lift_mps2 / cg;
       in.sigma_now_rad = flown_bank_rad();
-      in.sigma_end_rad = -last_sign_ * mean_sigma_d_rad_;
+      in.sigma_end_rad = sign * mean_sigma_d_rad_;
       in.sigma_rate_radps = sigma_rate_max_radps_;
       in.roll_lag_s = kRollLag_s;
       in.heading_err_rad = wrap_pi(chi - target.line_heading_rad);
       in.cross_track_m = target.cross_track_m;
-      const FinalTurnState turn = predict_final_turn(in);
+      return predict_final_turn(in);
+    };
+    if (in_final_reversal_window(t_go_s)) {
+      // The one last reversal starts when the TAEM state it leads to is balanced between
+      // heading error and cross-track offset, weighted by the mission's tolerances (a corridor
+      // reversal this late would leave the vehicle mid-swing); waiting moves both towards the
+      // present turn. Predicted with the roll from the bank flown to the mean bank magnitude
+      // on the other side.
+      const FinalTurnState turn = turn_until_taem(-last_sign_);
       const double cross_weight =
           taem_.range_tol_m > 0.0 && taem_.heading_tol_rad > 0.0 ? taem_.heading_tol_rad / taem_.range_tol_m : 0.0;
       // The same test after the final reversal is the correction reversal: the turn it left
@@ -796,6 +807,22 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     } else if (!reversing) {
       if (last_sign_ > 0 && err_to_target > corridor) sign_ref = -1;        // right of the target: bank left
       else if (last_sign_ < 0 && err_to_target < -corridor) sign_ref = 1;   // left of it: bank right
+      // Capture guard: farther than kCaptureOvershoot_m from the arrival line, a bank towards
+      // it is flown only while a turn away started now (roll to the mean bank on the other
+      // side, speed falling to TAEM) would still stop the vehicle within kCaptureOvershoot_m
+      // past the line; otherwise the vehicle reverses (or does not reverse) to turn away. The
+      // approach-angle bound of the field assumes the turn away starts at once, but the
+      // corridor lets the heading run up to its half-width past the target and the reversal
+      // takes 2 sigma / sigma_rate: X-38 nominal, 330 km off the line at the corridor start,
+      // crossed it 16 deg off, overshot by 21 km and reached TAEM 6.31 km out, 8 deg off
+      // heading; with the guard it reverses 50 km out and meets the line level (1.9 km).
+      // X-38 seed 7 x 200: 123 -> 133, miss p50 6.4 -> 2.9 km. A limit of 10 km: 130 of 200,
+      // but 12 more planned-alpha X-33 runs long (the guard's reversal 11-20 km out).
+      const int toward_line = target.cross_track_m >= 0.0 ? 1 : -1;
+      if (sign_ref == toward_line && std::fabs(target.cross_track_m) > kCaptureOvershoot_m &&
+          turn_until_taem(-toward_line).overshoot_m > kCaptureOvershoot_m) {
+        sign_ref = -toward_line;
+      }
     }
     out.heading_err_rad = err_to_target;
   }

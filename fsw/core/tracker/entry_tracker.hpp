@@ -12,6 +12,8 @@
 //                        the aim point on the required TAEM heading), 6 -> 3 deg, with one last
 //                        reversal timed so that the heading at TAEM is the target heading
 //                        and, if the turn it leaves overshoots, one correction reversal;
+//                        farther than 15 km from the line, a capture guard turns away as
+//                        soon as a turn away started later would cross the line by more;
 //   reversal             sign changes are flown open loop at the maximum bank rate (the rate
 //                        filter after the tracker limits the rate), drag integrator frozen;
 //                        alpha is lowered meanwhile so that C_L cos(sigma(t)) stays C_L cos(sigma0)
@@ -77,7 +79,8 @@ double pullout_drag_after_roll_mps2(double drag_mps2, double lift_over_drag, dou
                                     double scale_height_m, double sigma0_rad, double t_roll_s);
 
 /// Heading and cross-track motion relative to a straight arrival line over the last seconds
-/// before TAEM, for the final-reversal timing. The bank rolls from sigma_now to sigma_end at
+/// before TAEM, for the final-reversal timing and the capture guard (how far past the line
+/// a turn away started now carries the vehicle). The bank rolls from sigma_now to sigma_end at
 /// sigma_rate after roll_lag; the heading error psi turns at L_h sin(sigma) / V (L_h: lift
 /// over cos gamma), the cross-track offset y (> 0: the line is to the right) moves at
 /// -V sin(psi), and V falls linearly from speed to taem_speed over t_go.
@@ -96,6 +99,7 @@ struct FinalTurnInput {
 struct FinalTurnState {
   double heading_err_rad = 0.0;
   double cross_track_m = 0.0;
+  double overshoot_m = 0.0;  // farthest excursion past the line on the side opposite the start (>= 0)
 };
 FinalTurnState predict_final_turn(const FinalTurnInput& in);
 
