@@ -413,6 +413,18 @@ TEST(FinalTurn, OvershootIsTheCircularArcPastTheLine) {
 }
 
 namespace {
+// Level flight at profile point k: its radius, speed, heading, energy, drag and lift.
+RelativeState level_state_on_profile(const ReferenceProfile& p, int k) {
+  RelativeState s{};
+  s.radius_m = p.radius_m[k];
+  s.altitude_m = p.radius_m[k] - kEarthRadius_m;
+  s.velocity_mps = p.velocity_mps[k];
+  s.heading_rad = p.heading_rad[k];
+  s.energy_Jpkg = p.energy_Jpkg[k];
+  s.drag_mps2 = p.drag_mps2[k];
+  s.lift_mps2 = p.drag_mps2[k] * p.lift_over_drag[k];
+  return s;
+}
 // A tracker flying mid-profile (captured, level) and the state it was given.
 struct MidProfile {
   config::Mission mission;
@@ -433,15 +445,7 @@ std::unique_ptr<MidProfile> mid_profile_tracker(double profile_fraction) {
   if (m->tracker.init(m->mission) != Status::kOk) return nullptr;
   m->tracker.set_profile(profile);
   m->profile = &profile;
-  const int k = static_cast<int>(profile_fraction * (profile.n_points - 1));
-  RelativeState& s = m->state;
-  s.radius_m = profile.radius_m[k];
-  s.altitude_m = profile.radius_m[k] - kEarthRadius_m;
-  s.velocity_mps = profile.velocity_mps[k];
-  s.heading_rad = profile.heading_rad[k];
-  s.energy_Jpkg = profile.energy_Jpkg[k];
-  s.drag_mps2 = profile.drag_mps2[k];
-  s.lift_mps2 = profile.drag_mps2[k] * profile.lift_over_drag[k];
+  m->state = level_state_on_profile(profile, static_cast<int>(profile_fraction * (profile.n_points - 1)));
   return m;
 }
 // Time from profile point j to TAEM at its drag, the speed falling linearly to the TAEM speed
@@ -864,13 +868,7 @@ TEST(Tracker, OneCorrectionReversalStopsAFinalTurnThatOvershoots) {
   ASSERT_GT(k, 0);
   const double range_to_go_m = profile_range_to_go_m(p, k);
   const config::TaemInterface& taem = m->mission.taem;
-  RelativeState s0{};
-  s0.radius_m = p.radius_m[k];
-  s0.altitude_m = p.radius_m[k] - kEarthRadius_m;
-  s0.velocity_mps = p.velocity_mps[k];
-  s0.energy_Jpkg = p.energy_Jpkg[k];
-  s0.drag_mps2 = p.drag_mps2[k];
-  s0.lift_mps2 = p.drag_mps2[k] * p.lift_over_drag[k];
+  const RelativeState s0 = level_state_on_profile(p, k);
   double line = 0.0;  // heading of the line at the vehicle: the azimuth from it to the aim point
   auto place = [&](RelativeState& st, double distance_m) { line = place_from_aim_point(taem, distance_m, 0.0, st); };
   TrackerOutput out;
@@ -1005,13 +1003,7 @@ TEST(Tracker, CaptureGuardTurnsAwayBeforeTheLineIsOvershot) {
   const ReferenceProfile& p = *m->profile;
   const int k = profile_index_at_time_to_go(p, 200.0);
   ASSERT_GT(k, 0);
-  RelativeState s0{};
-  s0.radius_m = p.radius_m[k];
-  s0.altitude_m = p.radius_m[k] - kEarthRadius_m;
-  s0.velocity_mps = p.velocity_mps[k];
-  s0.energy_Jpkg = p.energy_Jpkg[k];
-  s0.drag_mps2 = p.drag_mps2[k];
-  s0.lift_mps2 = p.drag_mps2[k] * p.lift_over_drag[k];
+  const RelativeState s0 = level_state_on_profile(p, k);
   ASSERT_LT(s0.energy_Jpkg, m->tracker.terminal_energy_Jpkg());  // the corridor starts before the terminal phase
   const config::TaemInterface& taem = m->mission.taem;
   const double distance_m = profile_range_to_go_m(p, k), cross_track_m = 40000.0;
