@@ -989,15 +989,14 @@ TEST(Tracker, OneCorrectionReversalStopsAFinalTurnThatOvershoots) {
 
 TEST(Tracker, CaptureGuardTurnsAwayBeforeTheLineIsOvershot) {
   // X-33 in the lateral corridor, 200 s before TAEM, 40 km off the arrival line on the side
-  // its bank turns towards, on the plan's drag (3.1 km/s, lift 13.2 m/s^2, bank 79 deg: turn
-  // radius R = V^2 / (L sin sigma) = 730 km). The heading target there is the approach-angle
-  // bound sqrt(2 k |y| / R), 21.6 deg, and the corridor is 3-4 deg wide. Approaching at 18 deg
-  // (inside the corridor) the turn away, started after a reversal of 2 sigma / sigma_rate =
-  // 32 s (flown 10-30 km closer), takes R (1 - cos 18 deg) = 36 km more: the vehicle would
-  // cross the line by more than the guard's 15 km, so the tracker reverses now (without the
-  // guard it keeps the bank: checked). Approaching at 3 deg (shallower than the target: the
-  // corridor keeps the turn towards the line) the same turn away runs in 1 + 5 km: the bank
-  // is kept.
+  // its bank turns towards, on the plan's drag and flight path, the bank settled on the loop's
+  // 34 deg (3.1 km/s, lift 13.2 m/s^2: turn radius V^2 / (L sin sigma) = 1270 km, shrinking
+  // with V^2 as the speed falls to 0.9 km/s at TAEM). Approaching the line at 3 deg (shallower
+  // than the heading target: the corridor keeps the turn towards the line) a turn away would
+  // run in a few km: the bank is kept. Approaching 2.5 deg steeper than the target (inside the
+  // corridor, at least 3 deg wide) the turn away, started after a 15 s reversal, would carry
+  // the vehicle more than the guard's 15 km past the line: the tracker reverses now (without
+  // the guard it keeps the bank: checked). Not when the loop banks lift down.
   auto m = mid_profile_tracker(0.0);
   ASSERT_NE(m, nullptr);
   const ReferenceProfile& p = *m->profile;
@@ -1007,33 +1006,60 @@ TEST(Tracker, CaptureGuardTurnsAwayBeforeTheLineIsOvershot) {
   ASSERT_LT(s0.energy_Jpkg, m->tracker.terminal_energy_Jpkg());  // the corridor starts before the terminal phase
   const config::TaemInterface& taem = m->mission.taem;
   const double distance_m = profile_range_to_go_m(p, k), cross_track_m = 40000.0;
-  for (const double approach_deg : {18.0, 3.0}) {
+  constexpr double kDeg = M_PI / 180.0;
+  double sign = 0.0;  // > 0: banked right
+  auto approach = [&](double approach_rad, double drag_ratio, TrackerOutput& out) {
     EntryTracker t = m->tracker;
     RelativeState s = s0;
-    TrackerOutput out;
-    // First cycle level on the line (captured, the pull-out done): the bank sign it flies.
-    double line = place_from_aim_point(taem, distance_m, 0.0, s);
-    s.heading_rad = line;
+    s.drag_mps2 *= drag_ratio;
+    s.lift_mps2 *= drag_ratio;
+    // First cycle level on the line (captured, the pull-out done), then 30 s on the planned
+    // flight path: the 10 s bank average settles on the loop's bank, below 90 deg (the guard
+    // acts on lift-up turns only).
+    s.heading_rad = place_from_aim_point(taem, distance_m, 0.0, s);
     ASSERT_EQ(t.step(s, 0.1, out), Status::kOk);
     ASSERT_EQ(out.phase, Phase::kTracking);
     s.flight_path_rad = p.gamma_rad[k];
-    const double sign = out.sigma_rad >= 0.0 ? 1.0 : -1.0;  // > 0: banked right
-    // Then 40 km off the line on the side the bank turns towards (the line on that side:
-    // y = R sin(offset), > 0 with the line to the right), approaching it.
-    line = place_from_aim_point(taem, distance_m, std::asin(sign * cross_track_m / distance_m), s) -
-           std::asin(sign * cross_track_m / distance_m);
-    s.heading_rad = line + sign * approach_deg * M_PI / 180.0;
+    for (int i = 0; i < 300; ++i) {
+      s.t_s += 0.1;
+      t.set_flown_attitude(out.alpha_rad, out.sigma_rad);
+      ASSERT_EQ(t.step(s, 0.1, out), Status::kOk);
+    }
+    ASSERT_EQ(out.phase, Phase::kTracking);
+    ASSERT_EQ(out.sigma_d_rad < 85.0 * kDeg, drag_ratio == 1.0);
+    sign = out.sigma_rad >= 0.0 ? 1.0 : -1.0;
+    // Then 40 km off the line on the side the bank turns towards (y = R sin(offset), > 0 with
+    // the line to the right; the line's heading there is the bearing to the aim point less
+    // the offset), approaching it.
+    const double offset = std::asin(sign * cross_track_m / distance_m);
+    const double line = place_from_aim_point(taem, distance_m, offset, s) - offset;
+    s.heading_rad = line + sign * approach_rad;
     s.t_s += 0.1;
     t.set_flown_attitude(out.alpha_rad, out.sigma_rad);
     ASSERT_EQ(t.step(s, 0.1, out), Status::kOk);
-    if (approach_deg > 10.0) {
-      EXPECT_EQ(out.phase, Phase::kReversal) << approach_deg;
-      EXPECT_LT(out.sigma_rad * sign, 0.0) << approach_deg;
-    } else {
-      EXPECT_EQ(out.phase, Phase::kTracking) << approach_deg;
-      EXPECT_GT(out.sigma_rad * sign, 0.0) << approach_deg;
-    }
-  }
+  };
+  // The shallow approach, then one 2.5 deg steeper than the heading target found from it
+  // (heading error to the target: sign (approach - target approach)).
+  auto shallow_and_steep = [&](double drag_ratio, TrackerOutput& shallow, TrackerOutput& steep) {
+    approach(3.0 * kDeg, drag_ratio, shallow);
+    ASSERT_NE(sign, 0.0);
+    const double target_rad = 3.0 * kDeg - sign * shallow.heading_err_rad;
+    ASSERT_GT(target_rad, 10.0 * kDeg);
+    approach(target_rad + 2.5 * kDeg, drag_ratio, steep);
+    ASSERT_NEAR(steep.heading_err_rad, sign * 2.5 * kDeg, 0.1 * kDeg);
+  };
+  TrackerOutput shallow, steep;
+  shallow_and_steep(1.0, shallow, steep);
+  EXPECT_EQ(shallow.phase, Phase::kTracking);
+  EXPECT_GT(shallow.sigma_rad * sign, 0.0);
+  EXPECT_EQ(steep.phase, Phase::kReversal);
+  EXPECT_LT(steep.sigma_rad * sign, 0.0);
+  // The sensed drag 20 % short: the loop banks past 90 deg (lift down, diving for drag) and
+  // the guard leaves the steep approach alone (a reversal from there rolls through wings
+  // level for most of a minute).
+  shallow_and_steep(0.8, shallow, steep);
+  EXPECT_EQ(steep.phase, Phase::kTracking);
+  EXPECT_GT(steep.sigma_rad * sign, 0.0);
 }
 
 TEST(Tracker, LiftOverDragEstimateConvergesToTheSensedRatio) {

@@ -818,8 +818,12 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
       // heading; with the guard it reverses 50 km out and meets the line level (1.9 km).
       // X-38 seed 7 x 200: 123 -> 133, miss p50 6.4 -> 2.9 km. A limit of 10 km: 130 of 200,
       // but 12 more planned-alpha X-33 runs long (the guard's reversal 11-20 km out).
+      // Not while the mean bank is past 90 deg: the drag loop is diving, a reversal from there
+      // rolls through wings level for up to a minute (the climb it leaves costs the range
+      // more than the overshoot; X-33 seeds 1046 and 2152 from 0.7 and 7.8 to 12-13 km).
       const int toward_line = target.cross_track_m >= 0.0 ? 1 : -1;
-      if (sign_ref == toward_line && std::fabs(target.cross_track_m) > kCaptureOvershoot_m &&
+      if (sign_ref == toward_line && mean_sigma_d_rad_ < 0.5 * M_PI &&
+          std::fabs(target.cross_track_m) > kCaptureOvershoot_m &&
           turn_until_taem(-toward_line).overshoot_m > kCaptureOvershoot_m) {
         sign_ref = -toward_line;
       }
