@@ -12,8 +12,9 @@
 //                        the aim point on the required TAEM heading), 6 -> 3 deg, with one last
 //                        reversal timed so that the heading at TAEM is the target heading
 //                        and, if the turn it leaves overshoots, one correction reversal;
-//                        farther than 15 km from the line, a capture guard turns away as
-//                        soon as a turn away started later would cross the line by more;
+//                        farther than 15 km from the line and banked lift up, a capture
+//                        guard turns away as soon as a turn away started later would carry
+//                        the vehicle more than 15 km past the line;
 //   reversal             sign changes are flown open loop at the maximum bank rate (the rate
 //                        filter after the tracker limits the rate), drag integrator frozen;
 //                        alpha is lowered meanwhile so that C_L cos(sigma(t)) stays C_L cos(sigma0)
