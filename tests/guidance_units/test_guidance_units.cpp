@@ -509,6 +509,49 @@ TEST(Tracker, DragReferenceNeverExceedsTheSensedConstraintBound) {
   EXPECT_LT(out.drag_ref_mps2, 0.6 * d_planned);
 }
 
+TEST(Tracker, TerminalRangeControlRisesToThePlannedBoundWhateverTheSensedDragRatio) {
+  // A q-type bound in drag space, q_max C_D S / m, does not move with the density; a low
+  // sensed drag ratio K = 0.8 (here: the air 20 % thinner than the model) must not lower it.
+  // X-33 a tenth into the terminal phase, level on the profile, on the arrival line at half
+  // the plan's range to go (C.2): the range control asks for far more drag than the plan,
+  // and is held at the plan's bound, lowered here to 1.1 times the planned drag (the
+  // mission's limits removed, so that the sensed constraint limit does not act).
+  auto m = mid_profile_tracker(0.0);
+  ASSERT_NE(m, nullptr);
+  static ReferenceProfile bounded;
+  bounded = *m->profile;
+  const ReferenceProfile& p = bounded;
+  for (int j = 0; j < p.n_points; ++j) bounded.drag_max_mps2[j] = 1.1 * p.drag_mps2[j];
+  config::Mission unconstrained = m->mission;  // the sensed limits out of the way
+  unconstrained.constraints.heat_flux_max_Wpm2 = config::kNotConstrained;
+  unconstrained.constraints.load_factor_max_g = config::kNotConstrained;
+  unconstrained.constraints.q_alpha_max_Pa_rad = config::kNotConstrained;
+  unconstrained.constraints.dynamic_pressure_max_Pa = config::kNotConstrained;
+  ASSERT_EQ(m->tracker.init(unconstrained), Status::kOk);
+  m->tracker.set_profile(bounded);
+  const int last = p.n_points - 1;
+  const double e_early = p.energy_Jpkg[last] + 0.9 * kTerminalSpanFraction * (p.energy_Jpkg[0] - p.energy_Jpkg[last]);
+  int k = last;
+  while (k > 0 && p.energy_Jpkg[k - 1] <= e_early) --k;
+  RelativeState s = level_state_on_profile(p, k);
+  s.heading_rad = place_from_aim_point(m->mission.taem, 0.5 * profile_range_to_go_m(p, k), 0.0, s);
+  OnboardModels models;
+  ASSERT_EQ(models.init(m->mission), Status::kOk);
+  constexpr double kDragRatio = 0.8;
+  TrackerOutput out;
+  ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
+  for (int i = 0; i < 3000; ++i) {  // 300 s: the 20 s drag-ratio filter has converged
+    // The air is stratified over the ellipsoid: the model drag at the height above it.
+    const double h_ellipsoid_m = s.radius_m - surface_radius_m(s.latitude_rad);
+    s.drag_mps2 = kDragRatio * models.drag_mps2(out.alpha_rad, h_ellipsoid_m, s.velocity_mps);
+    s.t_s += 0.1;
+    ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
+  }
+  ASSERT_EQ(out.phase, Phase::kTracking);
+  const double planned_bound = 1.1 * p.drag_mps2[k];
+  EXPECT_NEAR(out.drag_ref_mps2, planned_bound, 0.02 * planned_bound);
+}
+
 TEST(Tracker, PullOutGuardStopsADiveThatWouldOvershootTheHeatLimit) {
   // Just after capture, below the planned drag ramp and sinking at 1.5 deg: the linear drag
   // loop asks for lift down. With the heat-flux limit set so that the sensed bound is 1.3 D,

@@ -588,9 +588,15 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   const bool lateral_corridor = e_norm < lateral_e_norm_;
   // Aim-point geometry, once per cycle, for the terminal range control and the corridor.
   const LateralTarget target = (terminal || lateral_corridor) ? lateral_target(s) : LateralTarget{};
-  // The plan's path-constraint bound on the drag, times the sensed drag ratio K when below 1
-  // (a density error does not move a q-type bound): terminal increment and pull-out guard.
-  const double plan_bound = ref.drag_max > 0.0 ? ref.drag_max * std::fmin(drag_scale_, 1.0) : 1e300;
+  // The plan's path-constraint bound on the drag (terminal increment and pull-out guard). A
+  // density error does not move a q-type bound in drag space, a C_D / mass error does, and
+  // the sensed ratio K cannot tell them apart (no air data). The bound is taken as planned,
+  // the same reading as constraint_drag_limit_mps2 (K is density). Scaled by min(K, 1) (K is
+  // C_D when below 1) it held the low-density runs off the drag their range needs: HORUS seed
+  // 7 x 500 65 -> 78 successes without it (range failures 274 -> 183, q*alpha 251 -> 304);
+  // that reading everywhere, in the sensed limit too, gave 61 (range 291). and the
+  // planned-alpha campaigns: 500, 133, 464 -> 465.
+  const double plan_bound = ref.drag_max > 0.0 ? ref.drag_max : 1e300;
   if (terminal) {
     // Terminal range control (drag reference update, as the Shuttle's): the range the plan
     // still flies from here, S = -int dE / D_ref (C.2), is matched to the great-circle
