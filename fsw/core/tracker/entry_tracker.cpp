@@ -699,7 +699,12 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   const double u_ref = ref.lod * std::cos(ref.sigma);
   double u_drag = u_ref + (d2_cmd - ref.drag_second) / b;                    // (3.10)
   out.saturated = std::fabs(u_drag) > lod;
-  if (!first_pullout_done_) first_pullout_done_ = lift_up_pullout_drag_mps2(s) < kPullOutComplete * D;
+  // The pull-outs are judged from the bank the vehicle flies (the rate filter's), not from the
+  // last command: judged from its own command, the guard below released lift down on the
+  // cycle after it had commanded wings level and commanded wings level again on the next,
+  // while the vehicle stayed lift down (HORUS seed 424: 541 kW/m^2 against 530).
+  const double flown_bank = flown_bank_rad();
+  if (!first_pullout_done_) first_pullout_done_ = lift_up_pullout_drag_mps2(s, flown_bank) < kPullOutComplete * D;
   if (!first_pullout_done_ && !terminal && u_drag < lod) {
     // Pull-out guard, from capture until the entry descent is arrested: a descent whose
     // wings-level pull-out, started after the roll out of the present bank, would bottom out
@@ -708,7 +713,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     // plateau in a dive it can no longer arrest (HORUS: drag 5 against 2.7, heat flux 700
     // kW/m^2 against 530). Later, on the plateau, small descents are the drag loop's own.
     const double d_guard = std::fmin(constraint_limit, plan_bound);
-    if (lift_up_pullout_drag_mps2(s, last_sigma_d_rad_) > d_guard) u_drag = lod;
+    if (lift_up_pullout_drag_mps2(s, flown_bank) > d_guard) u_drag = lod;
   }
   // No lift down in the final-reversal window (the last kFinalReversalWindow reversal
   // durations, at the bank averaged up to the last cycle): a dive started there cannot be
