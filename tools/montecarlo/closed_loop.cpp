@@ -38,15 +38,23 @@ PulloutBound wings_level_pullout_bound(const config::Mission& mission, std::uint
 }
 
 ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t seed, bool dispersed,
-                                 const std::string& trace_csv) {
+                                 const std::string& trace_csv, bool guidance_knows_vehicle) {
   const auto t0 = std::chrono::steady_clock::now();
   ClosedLoopResult r;
   r.seed = seed;
   r.dispersed = dispersed;
   auto sim = make_run_simulator(mission, seed, dispersed, &r.dispersion, &r.error);
   if (!sim) return r;
+  config::Mission guidance_mission = mission;
+  if (guidance_knows_vehicle) {
+    // The truth scales the coefficients it looks up (trimmed or not) by these factors.
+    config::Vehicle& v = guidance_mission.vehicle;
+    v.mass_kg *= r.dispersion.mass_scale;
+    for (double& c : v.aero.cl.values) c *= r.dispersion.cl_scale;
+    for (double& c : v.aero.cd.values) c *= r.dispersion.cd_scale;
+  }
   fsw::GuidanceStack stack;
-  const std::string err = stack.create(mission, fsw::exec::PlanMode::kSynchronous);
+  const std::string err = stack.create(guidance_mission, fsw::exec::PlanMode::kSynchronous);
   if (!err.empty()) {
     r.error = "guidance: " + err;
     return r;

@@ -42,8 +42,10 @@ PulloutBound wings_level_pullout_bound(const config::Mission& mission, std::uint
 
 /// Flies the mission; dispersed runs draw their dispersions from `seed` (draw_dispersions).
 /// A non-empty `trace_csv` receives the truth state and the guidance command once per second
-/// (the trajectory sample of the run, for plots and diagnosis).
+/// (the trajectory sample of the run, for plots and diagnosis). With `guidance_knows_vehicle`
+/// the guidance is given the run's drawn C_L, C_D and mass (a diagnosis, not a flight mode:
+/// no sensor tells a C_D error from a density error; it measures what that ignorance costs).
 ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t seed, bool dispersed,
-                                 const std::string& trace_csv = {});
+                                 const std::string& trace_csv = {}, bool guidance_knows_vehicle = false);
 
 }  // namespace reentry::tools

@@ -1,6 +1,8 @@
 // reentry_mc: Monte Carlo dispersion campaigns of closed-loop missions flown in process.
 //   reentry_mc --mission M --runs N --seed S --out DIR [--jobs J] [--shard i/K] [--nominal]
 //   reentry_mc --merge DIR1 [DIR2 ...] --out DIR
+// --guidance-knows-vehicle gives the guidance each run's drawn C_L, C_D and mass (diagnosis of
+// what the unobservable aerodynamic and mass errors cost; every record is marked).
 // --pullout-bound adds, per run, the maxima of the entry descent flown wings level at
 // alpha_max with the run's dispersions, and to the report the runs that exceed a path
 // constraint there (an upper bound on the success rate that no guidance can beat).
@@ -190,6 +192,9 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
                      {"violations", sorted[i]["violations"]}});
   }
   rep["worst_cases"] = worst;
+  // A diagnosis campaign (--guidance-knows-vehicle) must never pass for a flight campaign.
+  const auto knows = std::count_if(runs.begin(), runs.end(), [](const json& r) { return r.contains("guidance_knows_vehicle"); });
+  if (knows > 0) rep["guidance_knows_vehicle_runs"] = knows;
   // Physics bound (--pullout-bound): runs whose wings-level pull-out at alpha_max already
   // exceeds a path constraint fail whatever the guidance does.
   int bounded = 0;
@@ -232,6 +237,10 @@ int write_report(const std::vector<std::string>& dirs, const std::string& out, c
                 name.c_str(), a["p50"].get<double>(), a["p5"].get<double>(), a["p95"].get<double>(),
                 c["p50"].get<double>(), c["p5"].get<double>(), c["p95"].get<double>());
   }
+  if (rep.contains("guidance_knows_vehicle_runs")) {
+    std::printf("%s: diagnosis: the guidance knew the drawn C_L, C_D and mass in %d runs\n", name.c_str(),
+                rep["guidance_knows_vehicle_runs"].get<int>());
+  }
   if (rep.contains("pullout_bound")) {
     const json& b = rep["pullout_bound"];
     std::printf("%s: wings-level pull-out at alpha_max exceeds a path constraint in %d/%d runs: success rate <= %.1f %%\n",
@@ -248,7 +257,7 @@ int main(int argc, char** argv) {
   std::string mission_arg, out, shard;
   int runs = 0, jobs = 0;
   std::uint64_t seed = 1;
-  bool nominal = false, trace = false, pullout_bound = false;
+  bool nominal = false, trace = false, pullout_bound = false, knows_vehicle = false;
   std::vector<std::string> merge;
   app.add_option("--mission", mission_arg, "mission name or TOML file");
   app.add_option("--runs", runs, "number of runs of the whole campaign");
@@ -260,6 +269,8 @@ int main(int argc, char** argv) {
   app.add_flag("--trace", trace, "write each run's trajectory (1 Hz) to --out/traces/run_<seed>.csv");
   app.add_flag("--pullout-bound", pullout_bound,
                "also fly each run's entry descent wings level at alpha_max (the physics bound of the first pull-out)");
+  app.add_flag("--guidance-knows-vehicle", knows_vehicle,
+               "diagnosis: give the guidance each run's drawn C_L, C_D and mass (what their ignorance costs)");
   app.add_option("--merge", merge, "combine the run files of these directories into --out/report.json");
   CLI11_PARSE(app, argc, argv);
 
@@ -296,9 +307,10 @@ int main(int argc, char** argv) {
       const int r = mine[i];
       const std::string trace_csv =
           trace ? (fs::path(out) / "traces" / ("run_" + std::to_string(seed + r) + ".csv")).string() : std::string();
-      const ClosedLoopResult res = reentry::tools::run_closed_loop(loaded.mission, seed + r, !nominal, trace_csv);
+      const ClosedLoopResult res = reentry::tools::run_closed_loop(loaded.mission, seed + r, !nominal, trace_csv, knows_vehicle);
       records[i] = run_record(r, res);
       records[i]["mission"] = loaded.mission.name;
+      if (knows_vehicle) records[i]["guidance_knows_vehicle"] = true;
       if (pullout_bound) {
         const auto b = reentry::tools::wings_level_pullout_bound(loaded.mission, seed + r, !nominal);
         const auto& m = b.maxima;
