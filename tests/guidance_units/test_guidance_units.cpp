@@ -552,6 +552,46 @@ TEST(Tracker, TerminalRangeControlRisesToThePlannedBoundWhateverTheSensedDragRat
   EXPECT_NEAR(out.drag_ref_mps2, planned_bound, 0.02 * planned_bound);
 }
 
+namespace {
+// Mid-profile state below the reference: 0.8 of the planned drag at profile point k, the
+// planned L/D, sinking at gamma_rad.
+RelativeState sinking_below_reference(const MidProfile& m, int k, double gamma_rad) {
+  RelativeState s = m.state;
+  s.drag_mps2 = 0.8 * m.profile->drag_mps2[k];
+  s.lift_mps2 = s.drag_mps2 * m.profile->lift_over_drag[k];
+  s.flight_path_rad = gamma_rad;
+  return s;
+}
+// Heat-flux limit whose sensed drag bound, at 97 % of it, is drag_bound: the heat flux (3.5)
+// of the state at q = D / (C_D S/m) scales with sqrt(D).
+double heat_limit_for_drag_bound(const OnboardModels& models, const RelativeState& s, double alpha_rad,
+                                 double drag_bound_mps2) {
+  const double cd = models.drag_coefficient(alpha_rad, s.energy_Jpkg, s.altitude_m);
+  const double q = s.drag_mps2 / (cd * models.area_over_mass());
+  const double heat = models.heat_flux_Wpm2(2.0 * q / (s.velocity_mps * s.velocity_mps), s.velocity_mps);
+  return heat * std::sqrt(drag_bound_mps2 / s.drag_mps2) / 0.97;
+}
+// Drag at the bottom of the pull-out from s, independently of the tracker's closed form:
+// h'' = (L/D) D exp(-dh / H) cos(sigma(t)) - g_eff, sigma rolling from sigma0 to 0 at
+// sigma_rate (no filter lag), semi-implicit Euler at 1 ms; H the on-board scale height,
+// g_eff gravity less the centrifugal and Earth-rate terms (near circular speed the Earth-rate
+// term is most of it).
+double pullout_bottom_drag_mps2(const OnboardModels& models, const RelativeState& s, double sigma0_rad,
+                                double sigma_rate_radps) {
+  const double H = -1.0 / models.dlnrho_dr_fd(s.altitude_m, 100.0);
+  const double v_h = s.velocity_mps * std::cos(s.flight_path_rad);
+  const double g_eff = level_flight_lift_need_mps2(s.radius_m, v_h, s.latitude_rad, s.heading_rad);
+  const double lod = s.lift_mps2 / s.drag_mps2;
+  double h = 0.0, v = s.velocity_mps * std::sin(s.flight_path_rad);
+  for (int i = 0; i < 1000000 && v < 0.0; ++i) {
+    const double sigma = std::fmax(sigma0_rad - sigma_rate_radps * 1e-3 * i, 0.0);
+    v += 1e-3 * (lod * s.drag_mps2 * std::exp(-h / H) * std::cos(sigma) - g_eff);
+    h += 1e-3 * v;
+  }
+  return s.drag_mps2 * std::exp(-h / H);
+}
+}  // namespace
+
 TEST(Tracker, PullOutGuardStopsADiveThatWouldOvershootTheHeatLimit) {
   // Just after capture, below the planned drag ramp and sinking at 1.5 deg: the linear drag
   // loop asks for lift down. With the heat-flux limit set so that the sensed bound is 1.3 D,
@@ -562,31 +602,16 @@ TEST(Tracker, PullOutGuardStopsADiveThatWouldOvershootTheHeatLimit) {
   constexpr double kFraction = 0.3;
   auto m = mid_profile_tracker(kFraction);
   ASSERT_NE(m, nullptr);
-  RelativeState s = m->state;
   const int k = static_cast<int>(kFraction * (m->profile->n_points - 1));
-  s.drag_mps2 = 0.8 * m->profile->drag_mps2[k];
-  s.lift_mps2 = s.drag_mps2 * m->profile->lift_over_drag[k];
-  s.flight_path_rad = -1.5 * M_PI / 180.0;
+  RelativeState s = sinking_below_reference(*m, k, -1.5 * M_PI / 180.0);
+  const double lod = s.lift_mps2 / s.drag_mps2;
   OnboardModels models;
   ASSERT_EQ(models.init(m->mission), Status::kOk);
-  const double alpha = m->profile->alpha_rad[k];
-  const double cd = models.drag_coefficient(alpha, s.energy_Jpkg, s.altitude_m);
-  const double q = s.drag_mps2 / (cd * models.area_over_mass());
-  const double heat = models.heat_flux_Wpm2(2.0 * q / (s.velocity_mps * s.velocity_mps), s.velocity_mps);
   config::Mission tight = m->mission;
-  tight.constraints.heat_flux_max_Wpm2 = heat * std::sqrt(1.3) / 0.97;  // drag bound 1.3 D
-  // Independent check that the dive cannot be stopped below 1.3 D: the wings-level vertical
-  // motion, h'' = (L/D) D exp(-dh / H) - g_eff, from the sink rate (semi-implicit Euler, 1 ms).
-  const double H = -1.0 / models.dlnrho_dr_fd(s.altitude_m, 100.0);
-  const double v_h = s.velocity_mps * std::cos(s.flight_path_rad);
-  const double g_eff = gravity_mps2(s.radius_m) - v_h * v_h / s.radius_m;  // no Earth rate: conservative
-  double h = 0.0, v = s.velocity_mps * std::sin(s.flight_path_rad);
-  const double lod = s.lift_mps2 / s.drag_mps2;
-  for (int i = 0; i < 1000000 && v < 0.0; ++i) {
-    v += 1e-3 * (lod * s.drag_mps2 * std::exp(-h / H) - g_eff);
-    h += 1e-3 * v;
-  }
-  ASSERT_GT(s.drag_mps2 * std::exp(-h / H), 1.3 * s.drag_mps2);
+  tight.constraints.heat_flux_max_Wpm2 =
+      heat_limit_for_drag_bound(models, s, m->profile->alpha_rad[k], 1.3 * s.drag_mps2);
+  // Independent check that the dive cannot be stopped below 1.3 D (wings level from now).
+  ASSERT_GT(pullout_bottom_drag_mps2(models, s, 0.0, 0.0), 1.3 * s.drag_mps2);
 
   // Captured first in a shallow descent well below the reference (its pull-out would level
   // off below it, not yet complete), then the dive.
@@ -624,40 +649,19 @@ TEST(Tracker, PullOutGuardRollsOutOfTheBankActuallyFlown) {
   constexpr double kFraction = 0.3;
   auto m = mid_profile_tracker(kFraction);
   ASSERT_NE(m, nullptr);
-  RelativeState s = m->state;
   const int k = static_cast<int>(kFraction * (m->profile->n_points - 1));
-  s.drag_mps2 = 0.8 * m->profile->drag_mps2[k];
-  const double lod = m->profile->lift_over_drag[k];
-  s.lift_mps2 = s.drag_mps2 * lod;
-  s.flight_path_rad = -0.3 * M_PI / 180.0;
+  const RelativeState s = sinking_below_reference(*m, k, -0.3 * M_PI / 180.0);
   OnboardModels models;
   ASSERT_EQ(models.init(m->mission), Status::kOk);
-  // Pull-out bottom: h'' = (L/D) D exp(-dh / H) cos(sigma(t)) - g_eff, sigma rolling from
-  // sigma0 to 0 at the rate limit (no filter lag: the lift-down case is the milder one),
-  // semi-implicit Euler at 1 ms; g_eff: gravity less the centrifugal and Earth-rate terms
-  // (near circular speed the Earth-rate term is most of it).
-  const double H = -1.0 / models.dlnrho_dr_fd(s.altitude_m, 100.0);
-  const double v_h = s.velocity_mps * std::cos(s.flight_path_rad);
-  const double g_eff = level_flight_lift_need_mps2(s.radius_m, v_h, s.latitude_rad, s.heading_rad);
+  // The lift-down roll modelled without the filter lag: the milder case.
   const double sigma_rate = m->mission.constraints.sigma_rate_max_radps;
-  auto pullout_bottom = [&](double sigma0) {
-    double h = 0.0, v = s.velocity_mps * std::sin(s.flight_path_rad);
-    for (int i = 0; i < 1000000 && v < 0.0; ++i) {
-      const double sigma = std::fmax(sigma0 - sigma_rate * 1e-3 * i, 0.0);
-      v += 1e-3 * (lod * s.drag_mps2 * std::exp(-h / H) * std::cos(sigma) - g_eff);
-      h += 1e-3 * v;
-    }
-    return s.drag_mps2 * std::exp(-h / H);
-  };
-  const double bottom_level = pullout_bottom(0.0), bottom_lift_down = pullout_bottom(M_PI);
+  const double bottom_level = pullout_bottom_drag_mps2(models, s, 0.0, sigma_rate);
+  const double bottom_lift_down = pullout_bottom_drag_mps2(models, s, M_PI, sigma_rate);
   ASSERT_GT(bottom_lift_down, 1.3 * bottom_level);
-  const double bound = std::sqrt(bottom_level * bottom_lift_down);
   const double alpha = m->profile->alpha_rad[k];
-  const double cd = models.drag_coefficient(alpha, s.energy_Jpkg, s.altitude_m);
-  const double q = s.drag_mps2 / (cd * models.area_over_mass());
-  const double heat = models.heat_flux_Wpm2(2.0 * q / (s.velocity_mps * s.velocity_mps), s.velocity_mps);
   config::Mission tight = m->mission;
-  tight.constraints.heat_flux_max_Wpm2 = heat * std::sqrt(bound / s.drag_mps2) / 0.97;  // drag bound
+  tight.constraints.heat_flux_max_Wpm2 =
+      heat_limit_for_drag_bound(models, s, alpha, std::sqrt(bottom_level * bottom_lift_down));
   // Captured here: the wings-level pull-out levels off below the reference, not yet complete.
   ASSERT_LT(bottom_level, m->profile->drag_mps2[k]);
   ASSERT_GT(bottom_level, 1.05 * s.drag_mps2);
