@@ -572,22 +572,21 @@ double heat_limit_for_drag_bound(const OnboardModels& models, const RelativeStat
   return heat * std::sqrt(drag_bound_mps2 / s.drag_mps2) / 0.97;
 }
 // Drag at the bottom of the pull-out from s, independently of the tracker's closed form:
-// h'' = (L/D) D exp(-dh / H) cos(sigma(t)) - g_eff, sigma rolling from sigma0 to 0 at
-// sigma_rate (no filter lag), semi-implicit Euler at 1 ms; H the on-board scale height,
-// g_eff gravity less the centrifugal and Earth-rate terms (near circular speed the Earth-rate
-// term is most of it).
+// RK4 of h'' = (L/D) D exp(-dh / H) cos(sigma(t)) - g_eff, sigma rolling from sigma0 to 0 at
+// sigma_rate (no filter lag); H the on-board scale height, g_eff gravity less the centrifugal
+// and Earth-rate terms (near circular speed the Earth-rate term is most of it).
 double pullout_bottom_drag_mps2(const OnboardModels& models, const RelativeState& s, double sigma0_rad,
                                 double sigma_rate_radps) {
   const double H = -1.0 / models.dlnrho_dr_fd(s.altitude_m, 100.0);
   const double v_h = s.velocity_mps * std::cos(s.flight_path_rad);
   const double g_eff = level_flight_lift_need_mps2(s.radius_m, v_h, s.latitude_rad, s.heading_rad);
   const double lod = s.lift_mps2 / s.drag_mps2;
-  double h = 0.0, v = s.velocity_mps * std::sin(s.flight_path_rad);
-  for (int i = 0; i < 1000000 && v < 0.0; ++i) {
-    const double sigma = std::fmax(sigma0_rad - sigma_rate_radps * 1e-3 * i, 0.0);
-    v += 1e-3 * (lod * s.drag_mps2 * std::exp(-h / H) * std::cos(sigma) - g_eff);
-    h += 1e-3 * v;
-  }
+  const double t_roll = sigma0_rad > 0.0 ? sigma0_rad / sigma_rate_radps : 0.0;
+  auto accel = [&](double t, double h) {
+    const double sigma = t < t_roll ? sigma0_rad - sigma_rate_radps * t : 0.0;
+    return lod * s.drag_mps2 * std::exp(-h / H) * std::cos(sigma) - g_eff;
+  };
+  const double h = rk4_pullout_bottom_m(accel, s.velocity_mps * std::sin(s.flight_path_rad), t_roll);
   return s.drag_mps2 * std::exp(-h / H);
 }
 }  // namespace
