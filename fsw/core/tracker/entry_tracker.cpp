@@ -703,17 +703,18 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
   // last command: judged from its own command, the guard below released lift down on the
   // cycle after it had commanded wings level and commanded wings level again on the next,
   // while the vehicle stayed lift down (HORUS seed 424: 541 kW/m^2 against 530).
-  const double flown_bank = flown_bank_rad();
-  if (!first_pullout_done_) first_pullout_done_ = lift_up_pullout_drag_mps2(s, flown_bank) < kPullOutComplete * D;
-  if (!first_pullout_done_ && !terminal && u_drag < lod) {
+  if (!first_pullout_done_) {
+    const double d_pullout = lift_up_pullout_drag_mps2(s, flown_bank_rad());
+    first_pullout_done_ = d_pullout < kPullOutComplete * D;
     // Pull-out guard, from capture until the entry descent is arrested: a descent whose
     // wings-level pull-out, started after the roll out of the present bank, would bottom out
     // above the sensed constraint limit is stopped now with full lift. The linear drag loop
     // alone follows the planned drag ramp after capture with lift down and reaches the
     // plateau in a dive it can no longer arrest (HORUS: drag 5 against 2.7, heat flux 700
     // kW/m^2 against 530). Later, on the plateau, small descents are the drag loop's own.
-    const double d_guard = std::fmin(constraint_limit, plan_bound);
-    if (lift_up_pullout_drag_mps2(s, flown_bank) > d_guard) u_drag = lod;
+    if (!first_pullout_done_ && !terminal && u_drag < lod && d_pullout > std::fmin(constraint_limit, plan_bound)) {
+      u_drag = lod;
+    }
   }
   // No lift down in the final-reversal window (the last kFinalReversalWindow reversal
   // durations, at the bank averaged up to the last cycle): a dive started there cannot be
