@@ -1,6 +1,8 @@
-// Atmosphere against an independent US76 layer-equation evaluator; wind against the file.
+// Atmosphere against an independent US76 layer-equation evaluator; wind against the file; the
+// HORUS mission's TAEM alpha against the altitude window the layer equations leave.
 #include "environment/atmosphere.hpp"
 #include "environment/wind.hpp"
+#include "reentry/config/mission.hpp"
 
 #include <gtest/gtest.h>
 
@@ -204,4 +206,41 @@ TEST(Wind, BadFileReportsFileAndLine) {
   std::ofstream(path2) << "Hgtkm EWmean\n0 1\n";
   EXPECT_FALSE(rt::Wind::create(path2, &err).has_value());
   EXPECT_NE(err.find("NSmean"), std::string::npos) << err;
+}
+
+TEST(Us76Truth, HorusTaemAlphaLeavesAnAltitudeWindowWiderThanTheEndGameScatter) {
+  // Mission design check (config/missions/horus.toml, [alpha_profile] note): at the TAEM
+  // energy, q*alpha <= its limit at the profile's TAEM alpha bounds the altitude from below
+  // and Mach >= mach_target - mach_tol from above. With the US76 layer equations (not the
+  // table the models read) and the energy E = V^2/2 - mu/r on the ellipsoid, that window must
+  // be wider than the dispersed end-game altitude scatter (sd 0.4 km, three sd: 1.2 km). At the
+  // 20 deg of the session 14 profile it was 0.57 km.
+  const reentry::config::LoadResult loaded = reentry::config::load_mission("horus");
+  ASSERT_TRUE(loaded.ok) << loaded.error;
+  const auto& m = loaded.mission;
+  constexpr double kMu = 3.986004418e14, kReq = 6378137.0, kFlattening = 1.0 / 298.257223563;
+  const double r_surface = kReq * (1.0 - kFlattening * std::pow(std::sin(m.taem.latitude_rad), 2));
+  const double e_taem = 0.5 * m.taem.velocity_mps * m.taem.velocity_mps - kMu / (r_surface + m.taem.altitude_m);
+  const double e_entry = 0.5 * m.entry.velocity_mps * m.entry.velocity_mps - kMu / (kReq + m.entry.altitude_m);
+  // Normalised as the guidance does: energies above the -mu/R_eq reference.
+  const double e_norm = (e_taem + kMu / kReq) / (e_entry + kMu / kReq);
+  const auto& x = m.alpha_profile.x;
+  const auto& y = m.alpha_profile.y;
+  ASSERT_GE(x.size(), 2u);
+  std::size_t k = 1;
+  while (k + 1 < x.size() && x[k] < e_norm) ++k;
+  const double alpha_taem = y[k - 1] + (y[k] - y[k - 1]) * (e_norm - x[k - 1]) / (x[k] - x[k - 1]);
+  double lowest = 1e9, highest = -1e9;
+  for (double h = m.taem.altitude_m - 3000.0; h <= m.taem.altitude_m + 3000.0; h += 10.0) {
+    const double v = std::sqrt(2.0 * (e_taem + kMu / (r_surface + h)));
+    const Us76Truth air = us76_layers_geopotential(kR0_m * h / (kR0_m + h));
+    const double q = 0.5 * air.density_kgpm3 * v * v;
+    const double mach = v / std::sqrt(1.4 * 287.05287 * air.temperature_K);
+    if (q * alpha_taem <= m.constraints.q_alpha_max_Pa_rad && mach >= m.taem.mach_target - m.taem.mach_tol) {
+      lowest = std::fmin(lowest, h);
+      highest = std::fmax(highest, h);
+    }
+  }
+  EXPECT_GT(highest - lowest, 1200.0) << "window " << lowest << " .. " << highest << " m at alpha "
+                                      << alpha_taem * 180.0 / M_PI << " deg";
 }
