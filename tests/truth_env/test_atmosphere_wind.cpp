@@ -231,7 +231,9 @@ TEST(Us76Truth, HorusTaemAlphaLeavesAnAltitudeWindowWiderThanTheEndGameScatter) 
   while (k + 1 < x.size() && x[k] < e_norm) ++k;
   const double alpha_taem = y[k - 1] + (y[k] - y[k - 1]) * (e_norm - x[k - 1]) / (x[k] - x[k - 1]);
   double lowest = 1e9, highest = -1e9;
-  for (double h = m.taem.altitude_m - 3000.0; h <= m.taem.altitude_m + 3000.0; h += 10.0) {
+  // Inside the mission's TAEM altitude band.
+  const double band_m = m.taem.altitude_tol_m;
+  for (double h = m.taem.altitude_m - band_m; h <= m.taem.altitude_m + band_m; h += 10.0) {
     const double v = std::sqrt(2.0 * (e_taem + kMu / (r_surface + h)));
     const Us76Truth air = us76_layers_geopotential(kR0_m * h / (kR0_m + h));
     const double q = 0.5 * air.density_kgpm3 * v * v;
