@@ -30,7 +30,7 @@ assert whole == shards, "shards differ from the whole campaign"
 rw = json.load(open(os.path.join(d, "whole", "report.json")))
 rm = json.load(open(os.path.join(d, "merged", "report.json")))
 for k in ("runs", "successes", "success_rate", "ci95_low", "ci95_high", "miss_km_p50", "miss_km_p95", "miss_km_max", "failed_seeds",
-          "miss_along_km", "miss_cross_km"):
+          "miss_along_km", "miss_cross_km", "failure_modes", "violation_runs"):
     assert rw[k] == rm[k], k
 # The miss split along / across the arrival line recombines into the miss (small distances:
 # planar to well under a metre at these misses).
@@ -58,6 +58,33 @@ pb = rep["pullout_bound"]
 n_ex = sum(1 for r in bound if r["pullout_bound"]["exceeded"])
 assert pb["runs"] == 4 and pb["runs_exceeding"] == n_ex and abs(pb["success_rate_upper_bound"] - (4 - n_ex) / 4) < 1e-12, pb
 assert "pullout_bound" not in json.load(open(os.path.join(d, "whole", "report.json")))
+PY
+# Failure modes: four HORUS runs (seeds 7-10 fail in different ways: range long and short,
+# heat flux, q*alpha) with the pull-out bound. The modes partition the failed runs, the range
+# miss is split by side, and the per-violation counts are those of the records.
+"$mc" --mission horus --runs 4 --seed 7 --pullout-bound --out "$dir/modes" >/dev/null 2>&1 || fail "failure-mode campaign"
+/usr/bin/python3 - "$dir" <<'PY' || exit 1
+import json, sys, os
+d = sys.argv[1]
+runs = [json.loads(l) for l in open(os.path.join(d, "modes", "runs.jsonl")) if l.strip()]
+rep = json.load(open(os.path.join(d, "modes", "report.json")))
+modes = rep["failure_modes"]
+failed = [r for r in runs if not r["success"]]
+assert len(failed) >= 2, "the failure-mode check needs failing runs"
+assert sorted(s for m in modes for s in m["seeds"]) == sorted(r["seed"] for r in failed) == sorted(rep["failed_seeds"]), modes
+assert all(m["runs"] == len(m["seeds"]) for m in modes)
+assert [m["runs"] for m in modes] == sorted((m["runs"] for m in modes), reverse=True), modes
+for r in failed:
+    mode = next(m["mode"] for m in modes if r["seed"] in m["seeds"])
+    for v in r["violations"]:
+        want = v if v != "taem_range" else v + ("_short" if r["miss_along_km"] < 0 else "_long")
+        assert want in mode.split(" + "), (r["seed"], v, mode)
+for name, n in rep["violation_runs"].items():
+    assert n == sum(1 for r in runs if name in r["violations"]), name
+assert sum(rep["violation_runs"].values()) == sum(len(r["violations"]) for r in runs)
+feasible_failed = sorted(r["seed"] for r in failed if not r["pullout_bound"]["exceeded"])
+pf = rep["pullout_bound"]["failure_modes_feasible"]
+assert sorted(s for m in pf for s in m["seeds"]) == feasible_failed, pf
 PY
 "$mc" --mission x33 --runs 4 --shard 3/2 --out "$dir/bad" >/dev/null 2>&1 && fail "--shard 3/2 accepted"
 "$mc" --mission x33 --runs 0 --out "$dir/bad" >/dev/null 2>&1 && fail "--runs 0 accepted"

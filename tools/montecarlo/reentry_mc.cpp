@@ -128,6 +128,42 @@ std::vector<json> read_runs(const std::vector<std::string>& dirs, std::string* e
   return runs;
 }
 
+// A failed run's mode: its violations in the order recorded, "taem_range" split into
+// "taem_range_long" / "taem_range_short" by the side of the aim point it ended on.
+std::string failure_mode(const json& r) {
+  std::string mode;
+  for (const auto& v : r["violations"]) {
+    std::string name = v.get<std::string>();
+    if (name == "taem_range" && r.contains("miss_along_km"))
+      name += r["miss_along_km"].get<double>() < 0.0 ? "_short" : "_long";
+    mode += (mode.empty() ? "" : " + ") + name;
+  }
+  return mode.empty() ? (r.contains("event") ? r["event"].get<std::string>() : std::string("unknown")) : mode;
+}
+
+template <class Select>
+json failure_modes(const std::vector<json>& runs, Select select) {
+  std::map<std::string, std::vector<json>> seeds;
+  for (const auto& r : runs) {
+    if (!r["success"].get<bool>() && select(r)) seeds[failure_mode(r)].push_back(r["seed"]);
+  }
+  std::vector<std::pair<std::string, std::vector<json>>> sorted(seeds.begin(), seeds.end());
+  std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.second.size() > b.second.size(); });
+  json out = json::array();
+  for (const auto& [mode, s] : sorted) out.push_back({{"mode", mode}, {"runs", s.size()}, {"seeds", s}});
+  return out;
+}
+
+json violation_counts(const std::vector<json>& runs) {
+  std::map<std::string, int> count;
+  for (const auto& r : runs) {
+    for (const auto& v : r["violations"]) ++count[v.get<std::string>()];
+  }
+  json out = json::object();
+  for (const auto& [name, n] : count) out[name] = n;
+  return out;
+}
+
 json summarise(const std::vector<json>& runs, const std::string& mission) {
   using reentry::tools::percentile;
   std::vector<double> miss, along, cross, alt, mach, heading, qdot, g, q, qa, plan_ms, wall;
@@ -192,6 +228,11 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
                      {"violations", sorted[i]["violations"]}});
   }
   rep["worst_cases"] = worst;
+  // Failure modes: the set of violations of each failed run, the range miss split by side
+  // (long or short of the aim point), counted per set and sorted by count, plus the runs per
+  // violation. What fails, and with what else, is the first question of a campaign review.
+  rep["violation_runs"] = violation_counts(runs);
+  rep["failure_modes"] = failure_modes(runs, [](const json&) { return true; });
   // A diagnosis campaign (--guidance-knows-vehicle) must never pass for a flight campaign.
   const auto knows = std::count_if(runs.begin(), runs.end(), [](const json& r) { return r.contains("guidance_knows_vehicle"); });
   if (knows > 0) rep["guidance_knows_vehicle_runs"] = knows;
@@ -209,6 +250,9 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
                             {"runs_exceeding", exceeding.size()},
                             {"success_rate_upper_bound", static_cast<double>(bounded - static_cast<int>(exceeding.size())) / bounded},
                             {"seeds_exceeding", exceeding}};
+    // What the guidance loses among the runs the pull-out leaves feasible.
+    rep["pullout_bound"]["failure_modes_feasible"] = failure_modes(
+        runs, [](const json& r) { return r.contains("pullout_bound") && r["pullout_bound"]["exceeded"].empty(); });
   }
   return rep;
 }
@@ -237,6 +281,15 @@ int write_report(const std::vector<std::string>& dirs, const std::string& out, c
                 name.c_str(), a["p50"].get<double>(), a["p5"].get<double>(), a["p95"].get<double>(),
                 c["p50"].get<double>(), c["p5"].get<double>(), c["p95"].get<double>());
   }
+  auto print_modes = [&](const char* what, const json& modes) {
+    if (modes.empty()) return;
+    std::printf("%s: %s:", name.c_str(), what);
+    for (std::size_t i = 0; i < modes.size() && i < 6; ++i) {
+      std::printf("%s %s %d", i == 0 ? "" : ",", modes[i]["mode"].get<std::string>().c_str(), modes[i]["runs"].get<int>());
+    }
+    std::printf("%s\n", modes.size() > 6 ? ", ..." : "");
+  };
+  print_modes("failure modes (runs)", rep["failure_modes"]);
   if (rep.contains("guidance_knows_vehicle_runs")) {
     std::printf("%s: diagnosis: the guidance knew the drawn C_L, C_D and mass in %d runs\n", name.c_str(),
                 rep["guidance_knows_vehicle_runs"].get<int>());
@@ -246,6 +299,7 @@ int write_report(const std::vector<std::string>& dirs, const std::string& out, c
     std::printf("%s: wings-level pull-out at alpha_max exceeds a path constraint in %d/%d runs: success rate <= %.1f %%\n",
                 name.c_str(), b["runs_exceeding"].get<int>(), b["runs"].get<int>(),
                 100.0 * b["success_rate_upper_bound"].get<double>());
+    print_modes("failure modes of the runs feasible at the pull-out", b["failure_modes_feasible"]);
   }
   return 0;
 }
