@@ -23,6 +23,9 @@ def runs(sub):
 whole, serial = runs("whole"), runs("serial")
 shards = runs("s0") + runs("s1")
 shards.sort(key=lambda r: r["run"])
+# The merge leaves the combined records, in run order, next to its report.
+assert runs("merged") == shards, "merged records"
+assert [json.loads(l)["run"] for l in open(os.path.join(d, "merged", "runs.jsonl"))] == [0, 1, 2, 3], "merged records in run order"
 assert [r["run"] for r in whole] == [0, 1, 2, 3], "run indices"
 assert [r["seed"] for r in whole] == [11, 12, 13, 14], "seed = S + r"
 assert whole == serial, "--jobs changed the results"
@@ -89,4 +92,6 @@ PY
 "$mc" --mission x33 --runs 4 --shard 3/2 --out "$dir/bad" >/dev/null 2>&1 && fail "--shard 3/2 accepted"
 "$mc" --mission x33 --runs 0 --out "$dir/bad" >/dev/null 2>&1 && fail "--runs 0 accepted"
 "$mc" --merge "$dir/s0" "$dir/s0" --out "$dir/bad" >/dev/null 2>&1 && fail "duplicate runs accepted in merge"
+"$mc" --merge "$dir/s0" "$dir/s1" --out "$dir/s1" >/dev/null 2>&1 && fail "merge into one of its inputs accepted"
+[[ -e "$dir/s1/runs.jsonl" ]] && fail "merge wrote into one of its inputs"
 echo PASS

@@ -2,7 +2,8 @@
 """Plots of a Monte Carlo campaign: miss histogram, TAEM footprint, error histograms.
 
 Reads DIR/runs*.jsonl (one JSON record per run, written by reentry_mc) and DIR/report.json;
-writes DIR/miss_histogram.png, DIR/footprint.png and DIR/errors.png (matplotlib, Agg).
+writes DIR/miss_histogram.png, DIR/footprint.png, DIR/errors.png and, when runs failed,
+DIR/failure_modes.png (the report's failure modes as bars; matplotlib, Agg).
 """
 import glob
 import json
@@ -84,7 +85,32 @@ def main():
     fig.tight_layout()
     fig.savefig(os.path.join(out, "errors.png"), dpi=110)
     plt.close(fig)
-    print(f"mc_plots: wrote miss_histogram.png, footprint.png, errors.png in {out}")
+    written = "miss_histogram.png, footprint.png, errors.png"
+    report_path = os.path.join(out, "report.json")
+    modes = []
+    if os.path.exists(report_path):
+        with open(report_path) as f:
+            modes = json.load(f).get("failure_modes", [])
+    if modes:
+        # Failure modes (each failed run's set of violations), most frequent at the top.
+        shown = modes[:12]
+        fig, ax = plt.subplots(figsize=(10, 0.45 * len(shown) + 1.6))
+        labels = [m["mode"].replace("taem_", "") for m in shown][::-1]
+        counts = [m["runs"] for m in shown][::-1]
+        ax.barh(range(len(shown)), counts, color="tab:red", edgecolor="k")
+        ax.set_yticks(range(len(shown)))
+        ax.set_yticklabels(labels)
+        for i, c in enumerate(counts):
+            ax.text(c, i, f" {c}", va="center")
+        ax.set_xlabel("failed runs [-]")
+        rest = sum(m["runs"] for m in modes[12:])
+        ax.set_title(title + (f" ({rest} more in other modes)" if rest else ""))
+        ax.grid(axis="x", alpha=0.4)
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, "failure_modes.png"), dpi=110)
+        plt.close(fig)
+        written += ", failure_modes.png"
+    print(f"mc_plots: wrote {written} in {out}")
 
 
 if __name__ == "__main__":

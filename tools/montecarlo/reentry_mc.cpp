@@ -9,7 +9,8 @@
 // Run r (0 <= r < N) uses seed S + r, so any run is reproduced alone with the same seed
 // (e.g. tools/sil --seed S+r). A shard i/K flies the runs with r % K == i and writes
 // DIR/runs_shard_i_of_K.jsonl; a whole campaign writes DIR/runs.jsonl; --merge combines the
-// run files of several directories. Every mode ends by writing DIR/report.json.
+// run files of several directories into DIR/runs.jsonl. Every mode ends by writing
+// DIR/report.json.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -257,12 +258,20 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
   return rep;
 }
 
-int write_report(const std::vector<std::string>& dirs, const std::string& out, const std::string& mission) {
+int write_report(const std::vector<std::string>& dirs, const std::string& out, const std::string& mission,
+                 bool write_runs = false) {
   std::string error;
   const auto runs = read_runs(dirs, &error);
   if (!error.empty()) {
     std::fprintf(stderr, "reentry_mc: %s\n", error.c_str());
     return 2;
+  }
+  if (write_runs) {
+    // A merge leaves a complete campaign directory: the combined records (in run order) next
+    // to the report, so that the plots and a later merge read it like a whole campaign.
+    fs::create_directories(out);
+    std::ofstream records(fs::path(out) / "runs.jsonl");
+    for (const auto& r : runs) records << r.dump() << "\n";
   }
   std::string name = mission;
   if (name.empty() && !runs.empty() && runs.front().contains("mission")) name = runs.front()["mission"];
@@ -325,10 +334,21 @@ int main(int argc, char** argv) {
                "also fly each run's entry descent wings level at alpha_max (the physics bound of the first pull-out)");
   app.add_flag("--guidance-knows-vehicle", knows_vehicle,
                "diagnosis: give the guidance each run's drawn C_L, C_D and mass (what their ignorance costs)");
-  app.add_option("--merge", merge, "combine the run files of these directories into --out/report.json");
+  app.add_option("--merge", merge, "combine the run files of these directories into --out (runs.jsonl, report.json)");
   CLI11_PARSE(app, argc, argv);
 
-  if (!merge.empty()) return write_report(merge, out, "");
+  if (!merge.empty()) {
+    // The merged records go to --out/runs.jsonl: a directory merged into itself would hold its
+    // runs twice.
+    std::error_code ec;
+    for (const auto& d : merge) {
+      if (fs::exists(out) && fs::equivalent(fs::path(d), fs::path(out), ec)) {
+        std::fprintf(stderr, "reentry_mc: --out %s is one of the merged directories\n", out.c_str());
+        return 2;
+      }
+    }
+    return write_report(merge, out, "", true);
+  }
   if (mission_arg.empty() || runs <= 0) {
     std::fprintf(stderr, "reentry_mc: --mission and --runs N (N >= 1) are required (or --merge)\n");
     return 2;
