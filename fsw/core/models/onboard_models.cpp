@@ -101,7 +101,10 @@ Status OnboardAtmosphere::init_table(const char* path) {
   return Status::kOk;
 }
 
-int OnboardAtmosphere::segment(double altitude_m) const { return numerics::bracket_index(h_m_, n_, altitude_m); }
+int OnboardAtmosphere::segment(double altitude_m) const {
+  hint_segment_ = numerics::bracket_index(h_m_, n_, altitude_m, hint_segment_);
+  return hint_segment_;
+}
 
 double OnboardAtmosphere::density_kgpm3(double altitude_m) const {
   if (kind_ == AtmosphereKind::kExponential) return kRho0_kgpm3 * std::exp(-kBeta_pm * altitude_m);
@@ -157,7 +160,8 @@ Status OnboardAero::init(const config::AeroModel& aero) {
 }
 
 double OnboardAero::interpolate(const double* table, double alpha_rad, double mach) const {
-  return numerics::bilinear(alpha_rad_, n_alpha_, mach_, n_mach_, table, alpha_rad, mach);  // clamped at the edges
+  return numerics::bilinear(alpha_rad_, n_alpha_, mach_, n_mach_, table, alpha_rad, mach, &hint_alpha_,
+                            &hint_mach_);  // clamped at the edges
 }
 
 void OnboardAero::coefficients(double alpha_rad, double mach, double& cl, double& cd) const {

@@ -73,6 +73,7 @@ class OnboardAtmosphere {
 
  private:
   int segment(double altitude_m) const;
+  mutable int hint_segment_ = -1;  // last altitude interval (search hint only, see OnboardAero)
   AtmosphereKind kind_ = AtmosphereKind::kExponential;
   int n_ = 0;
   double h_m_[kCapacity] = {};
@@ -99,6 +100,12 @@ class OnboardAero {
 
  private:
   double interpolate(const double* table, double alpha_rad, double mach) const;
+  // Last intervals found: successive lookups (the planner's grid, the tracker's bisections
+  // at one Mach) mostly fall in the same or a neighbouring interval. A hint changes only the
+  // search, never the interval found (numerics::bracket_index), so results are identical;
+  // each instance belongs to one thread (planner worker or GNC cycle).
+  mutable int hint_alpha_ = -1;
+  mutable int hint_mach_ = -1;
   int n_alpha_ = 0;
   int n_mach_ = 0;
   double alpha_rad_[kMaxAlpha] = {};
