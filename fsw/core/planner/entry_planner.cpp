@@ -376,14 +376,25 @@ void EntryPlanner::build_range_table() {
 }
 
 double EntryPlanner::energy_at_range(double s_m, int& k, double& w) const {
-  int lo = 0, hi = kGrid - 1;
-  if (s_m <= 0.0) { hi = 1; }
-  else if (s_m >= s_total_) { lo = kGrid - 2; }
-  for (int it = 0; it < 16 && hi - lo > 1; ++it) {
-    const int mid = (lo + hi) / 2;
-    if (s_cum_[mid] <= s_m) lo = mid; else hi = mid;
+  // Cell k with s_cum_[k] <= s_m < s_cum_[k + 1] (s_cum_ strictly increasing), clamped to the
+  // first and last cells. The integration walks the cells in order, so the last cell and its
+  // successor are tried before the bisection; the cell found is the same either way.
+  const int h = range_hint_;
+  if (s_m > 0.0 && s_m < s_total_ && h >= 0 && h + 1 < kGrid && s_cum_[h] <= s_m && s_m < s_cum_[h + 1]) {
+    k = h;
+  } else if (s_m > 0.0 && s_m < s_total_ && h >= 0 && h + 2 < kGrid && s_cum_[h + 1] <= s_m && s_m < s_cum_[h + 2]) {
+    k = h + 1;
+  } else {
+    int lo = 0, hi = kGrid - 1;
+    if (s_m <= 0.0) { hi = 1; }
+    else if (s_m >= s_total_) { lo = kGrid - 2; }
+    for (int it = 0; it < 16 && hi - lo > 1; ++it) {
+      const int mid = (lo + hi) / 2;
+      if (s_cum_[mid] <= s_m) lo = mid; else hi = mid;
+    }
+    k = lo;
   }
-  k = lo;
+  range_hint_ = k;
   // Linear D in E within the cell: D(s) = D_k exp(-m (s - s_k)), E = E_k + (D - D_k) / m.
   const double ds = s_m - s_cum_[k];
   const double m = d_slope_[k];
@@ -393,44 +404,60 @@ double EntryPlanner::energy_at_range(double s_m, int& k, double& w) const {
   return energy;
 }
 
-void EntryPlanner::rop_derivative(double s_m, const Rop& y, Rop& dy) const {
+EntryPlanner::RangePoint EntryPlanner::range_point(double s_m) const {
+  RangePoint p;
   int k;
   double w;
-  const double energy = energy_at_range(s_m, k, w);
-  const double r = r_[k] + w * (r_[k + 1] - r_[k]);
+  p.energy = energy_at_range(s_m, k, w);
+  p.r = r_[k] + w * (r_[k + 1] - r_[k]);
   const double gamma = gamma_[k] + w * (gamma_[k + 1] - gamma_[k]);
-  const double drag = d_[k] + w * (d_[k + 1] - d_[k]);
-  const double v = v_[k] + w * (v_[k + 1] - v_[k]);
-  double lod;
-  const double lod_cos = bank_magnitude(k, w, y.lat, y.chi, lod);
-  const double lc = clamp(lod_cos, -lod, lod);
-  const double lod_sin_abs = std::sqrt(lod * lod - lc * lc);  // (7.21)
-  const double lod_sin = sigma_sign_schedule(energy, lod_sin_abs, lod);
-  const double cg = std::cos(gamma), sd = std::sin(y.lat), cd = std::cos(y.lat);
+  p.drag = d_[k] + w * (d_[k + 1] - d_[k]);
+  p.v = v_[k] + w * (v_[k + 1] - v_[k]);
+  p.cos_gamma = std::cos(gamma);
+  if (p.energy >= e_corridor_) {  // the lift and Coriolis terms (not in the corridor phase)
+    p.tan_gamma = std::tan(gamma);
+    p.a0 = a0_[k] + w * (a0_[k + 1] - a0_[k]);
+    p.kf = kfac_[k] + w * (kfac_[k + 1] - kfac_[k]);
+    p.b = b_[k] + w * (b_[k + 1] - b_[k]);
+    p.dpp = dpp_[k] + w * (dpp_[k + 1] - dpp_[k]);
+    p.lod = lod_[k] + w * (lod_[k + 1] - lod_[k]);
+  }
+  return p;
+}
+
+void EntryPlanner::rop_derivative(const RangePoint& p, const Rop& y, Rop& dy) const {
+  const double cg = p.cos_gamma, r = p.r, sd = std::sin(y.lat), cd = std::cos(y.lat);
   const double sc = std::sin(y.chi), cc = std::cos(y.chi);
   // (2.42)-(2.45) multiplied by dE/ds = -D.
   dy.lon = sc * cg / (r * cd);                                              // (2.42)
   dy.lat = cc * cg / r;                                                     // (2.43)
-  if (energy < e_corridor_) {
+  if (p.energy < e_corridor_) {
     // Lateral corridor phase: the tracker's heading corridor holds the vehicle on a great
     // circle and averages the lateral lift out, so the trajectory is that circle: (2.44)
     // without the lift and Coriolis terms.
     dy.chi = cg * (sd / cd) * sc / r;
     return;
   }
-  const double c_chi = -2.0 * kEarthRate_radps * (sd - cd * std::tan(gamma) * cc) / (drag * v);  // (2.45)
-  dy.chi = drag * (lod_sin / (v * v * cg) - c_chi) + cg * (sd / cd) * sc / r;                    // (2.44)
+  // Bank magnitude from D'' = a + b (L/D) cos(sigma) (7.17)-(7.19), as bank_magnitude().
+  const double drag = p.drag, v = p.v, lod = p.lod;
+  const double a = p.a0 + p.kf * (-2.0 * kEarthRate_radps * cd * sc / (drag * v));  // coriolis_gamma
+  const double lc = clamp((p.dpp - a) / p.b, -lod, lod);
+  const double lod_sin_abs = std::sqrt(lod * lod - lc * lc);  // (7.21)
+  const double lod_sin = sigma_sign_schedule(p.energy, lod_sin_abs, lod);
+  const double c_chi = -2.0 * kEarthRate_radps * (sd - cd * p.tan_gamma * cc) / (drag * v);  // (2.45)
+  dy.chi = drag * (lod_sin / (v * v * cg) - c_chi) + cg * (sd / cd) * sc / r;                 // (2.44)
 }
 
 void EntryPlanner::rk4(double s_m, const Rop& y, double h, Rop& out) const {
   Rop k1, k2, k3, k4, t;
-  rop_derivative(s_m, y, k1);
+  const RangePoint p_mid = range_point(s_m + 0.5 * h);  // both midpoint stages
+  rop_derivative(range_point(s_m), y, k1);
   t = {y.lon + 0.5 * h * k1.lon, y.lat + 0.5 * h * k1.lat, y.chi + 0.5 * h * k1.chi};
-  rop_derivative(s_m + 0.5 * h, t, k2);
+  rop_derivative(p_mid, t, k2);
   t = {y.lon + 0.5 * h * k2.lon, y.lat + 0.5 * h * k2.lat, y.chi + 0.5 * h * k2.chi};
-  rop_derivative(s_m + 0.5 * h, t, k3);
+  rop_derivative(p_mid, t, k3);
   t = {y.lon + h * k3.lon, y.lat + h * k3.lat, y.chi + h * k3.chi};
-  rop_derivative(s_m + h, t, k4);
+  rop_derivative(range_point(s_m + h), t, k4);
   out.lon = y.lon + h / 6.0 * (k1.lon + 2.0 * k2.lon + 2.0 * k3.lon + k4.lon);
   out.lat = y.lat + h / 6.0 * (k1.lat + 2.0 * k2.lat + 2.0 * k3.lat + k4.lat);
   out.chi = y.chi + h / 6.0 * (k1.chi + 2.0 * k2.chi + 2.0 * k3.chi + k4.chi);

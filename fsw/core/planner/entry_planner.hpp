@@ -92,7 +92,14 @@ class EntryPlanner {
   Status extract();
   void build_range_table();
   double energy_at_range(double s_m, int& k, double& w) const;
-  void rop_derivative(double s_m, const Rop& y, Rop& dy) const;
+  // The range-dependent part of the reduced-order derivative: grid values interpolated at
+  // one flown range, shared by the RK4 stages evaluated there (the two midpoint stages).
+  struct RangePoint {
+    double energy = 0.0, r = 0.0, drag = 0.0, v = 0.0, cos_gamma = 0.0, tan_gamma = 0.0;
+    double a0 = 0.0, kf = 0.0, b = 0.0, dpp = 0.0, lod = 0.0;
+  };
+  RangePoint range_point(double s_m) const;
+  void rop_derivative(const RangePoint& p, const Rop& y, Rop& dy) const;
   double bank_magnitude(int k, double w, double lat, double chi, double& lod) const;
   void rk4(double s_m, const Rop& y, double h, Rop& out) const;
   Status integrate(double s_rev, bool store, Rop& final_state);
@@ -117,6 +124,7 @@ class EntryPlanner {
   double alpha_max_ = 0.0;
   bool lateral_unreachable_ = false;  // reversal search: no bracket, best effort beyond its limit
   bool level_at_max_ = false;         // fit: the length is below the shortest profile's (maximum level)
+  mutable int range_hint_ = -1;       // last cell of energy_at_range (search hint only)
   double ranging_blend_min_ = 0.0;  // blend of the last converged plan (never decreases in flight)
   double sigma_rate_max_ = 0.0;
   int rk4_steps_ = 600;
