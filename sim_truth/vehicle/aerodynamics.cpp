@@ -54,6 +54,28 @@ double increment(const std::vector<config::Table2D>& tables, const std::vector<d
   return (1.0 - t) * lookup(tables[j], alpha, mach) + t * lookup(tables[j + 1], alpha, mach);
 }
 
+// The same increment with the tables already evaluated at one (alpha, Mach): the trim solve
+// below evaluates the moment at many deflections for one flight condition, and the table
+// look-ups dominated the HORUS truth simulation (a fifth of a closed-loop run). Same
+// arithmetic as increment(), so the same result.
+struct IncrementAtCondition {
+  const std::vector<double>& deflection;
+  double value[64];  // Aerodynamics::create() bounds the deflections to 64
+  IncrementAtCondition(const std::vector<config::Table2D>& tables, const std::vector<double>& defl, double alpha,
+                       double mach)
+      : deflection(defl), value{} {
+    for (size_t k = 0; k < defl.size() && k < 64; ++k) value[k] = lookup(tables[k], alpha, mach);
+  }
+  double operator()(double delta) const {
+    const int n = static_cast<int>(deflection.size());
+    if (n == 1) return value[0];
+    const double d = std::fmin(std::fmax(delta, deflection.front()), deflection.back());
+    const int j = detail::bracket(deflection.data(), n, d);
+    const double t = (d - deflection[j]) / (deflection[j + 1] - deflection[j]);
+    return (1.0 - t) * value[j] + t * value[j + 1];
+  }
+};
+
 struct SurfaceSolution {
   double delta;
   bool solved;
@@ -64,7 +86,8 @@ struct SurfaceSolution {
 // change; the root closest to zero deflection is refined with Brent. Without a root, the
 // limit with the smaller |Cm| is returned.
 SurfaceSolution solve_surface(const config::ControlSurface& s, double base, double alpha, double mach) {
-  auto cm_of = [&](double delta) { return base + s.count * increment(s.dcm, s.deflection_rad, delta, alpha, mach); };
+  const IncrementAtCondition dcm(s.dcm, s.deflection_rad, alpha, mach);
+  auto cm_of = [&](double delta) { return base + s.count * dcm(delta); };
   // Break points: the limits and the tabulated deflections strictly inside them.
   double pts[66];
   int np = 0;
