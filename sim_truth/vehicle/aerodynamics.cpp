@@ -42,22 +42,27 @@ double lookup(const config::Table2D& t, double alpha, double mach) {
   return detail::bilinear(t.alpha_rad, t.mach, t.values, alpha, mach);
 }
 
-// Increment of one surface at a deflection: tables at the neighbouring tabulated deflections
-// interpolated linearly in deflection (clamped to the tabulated range).
-double increment(const std::vector<config::Table2D>& tables, const std::vector<double>& deflection, double delta,
-                 double alpha, double mach) {
+// Linear interpolation in deflection between the tabulated deflections (clamped to their
+// range); value(k) is table k at the flight condition.
+template <class Value>
+double interpolate_in_deflection(const std::vector<double>& deflection, double delta, const Value& value) {
   const int n = static_cast<int>(deflection.size());
-  if (n == 1) return lookup(tables[0], alpha, mach);
+  if (n == 1) return value(0);
   const double d = std::fmin(std::fmax(delta, deflection.front()), deflection.back());
   const int j = detail::bracket(deflection.data(), n, d);
   const double t = (d - deflection[j]) / (deflection[j + 1] - deflection[j]);
-  return (1.0 - t) * lookup(tables[j], alpha, mach) + t * lookup(tables[j + 1], alpha, mach);
+  return (1.0 - t) * value(j) + t * value(j + 1);
 }
 
-// The same increment with the tables already evaluated at one (alpha, Mach): the trim solve
-// below evaluates the moment at many deflections for one flight condition, and the table
-// look-ups dominated the HORUS truth simulation (a fifth of a closed-loop run). Same
-// arithmetic as increment(), so the same result.
+// Increment of one surface at a deflection.
+double increment(const std::vector<config::Table2D>& tables, const std::vector<double>& deflection, double delta,
+                 double alpha, double mach) {
+  return interpolate_in_deflection(deflection, delta, [&](int k) { return lookup(tables[k], alpha, mach); });
+}
+
+// The same increment with the tables evaluated once at one (alpha, Mach): the trim solve below
+// evaluates the moment at many deflections for one flight condition, and re-interpolating the
+// tables in alpha and Mach each time was a fifth of a HORUS closed-loop run.
 struct IncrementAtCondition {
   const std::vector<double>& deflection;
   double value[64];  // Aerodynamics::create() bounds the deflections to 64
@@ -67,12 +72,7 @@ struct IncrementAtCondition {
     for (size_t k = 0; k < defl.size() && k < 64; ++k) value[k] = lookup(tables[k], alpha, mach);
   }
   double operator()(double delta) const {
-    const int n = static_cast<int>(deflection.size());
-    if (n == 1) return value[0];
-    const double d = std::fmin(std::fmax(delta, deflection.front()), deflection.back());
-    const int j = detail::bracket(deflection.data(), n, d);
-    const double t = (d - deflection[j]) / (deflection[j + 1] - deflection[j]);
-    return (1.0 - t) * value[j] + t * value[j + 1];
+    return interpolate_in_deflection(deflection, delta, [this](int k) { return value[k]; });
   }
 };
 
