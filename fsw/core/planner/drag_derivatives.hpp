@@ -42,8 +42,11 @@ inline double drag_second_a_no_coriolis(const DragLocal& l, double drag_prime) {
 }
 
 /// C_gamma = -2 omega cos(delta) sin(chi) / (D V)  (7.18).
+inline double coriolis_gamma_trig(double omega, double cos_latitude, double sin_heading, double drag, double velocity) {
+  return -2.0 * omega * cos_latitude * sin_heading / (drag * velocity);
+}
 inline double coriolis_gamma(double omega, double latitude, double heading, double drag, double velocity) {
-  return -2.0 * omega * std::cos(latitude) * std::sin(heading) / (drag * velocity);
+  return coriolis_gamma_trig(omega, std::cos(latitude), std::sin(heading), drag, velocity);
 }
 
 /// (7.20): b = -k / V^2.

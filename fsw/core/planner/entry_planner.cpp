@@ -340,15 +340,14 @@ Status EntryPlanner::extract() {
 
 // ------------------------------------------------------------------ reduced-order system
 double EntryPlanner::bank_magnitude(int k, double w, double lat, double chi, double& lod) const {
-  const double drag = d_[k] + w * (d_[k + 1] - d_[k]);
-  const double v = v_[k] + w * (v_[k + 1] - v_[k]);
-  const double a0 = a0_[k] + w * (a0_[k + 1] - a0_[k]);
-  const double kf = kfac_[k] + w * (kfac_[k + 1] - kfac_[k]);
-  const double b = b_[k] + w * (b_[k + 1] - b_[k]);
-  const double dpp = dpp_[k] + w * (dpp_[k + 1] - dpp_[k]);
-  lod = lod_[k] + w * (lod_[k + 1] - lod_[k]);
-  const double a = a0 + kf * coriolis_gamma(kEarthRate_radps, lat, chi, drag, v);  // (7.18)-(7.19)
-  return (dpp - a) / b;  // (L/D) cos(sigma) from D'' = a + b (L/D) cos(sigma) (7.17)
+  const RangePoint p = range_point_at(k, w, true);
+  lod = p.lod;
+  return vertical_lod(p, std::cos(lat), std::sin(chi));
+}
+
+double EntryPlanner::vertical_lod(const RangePoint& p, double cos_lat, double sin_chi) const {
+  const double a = p.a0 + p.kf * coriolis_gamma_trig(kEarthRate_radps, cos_lat, sin_chi, p.drag, p.v);  // (7.18)-(7.19)
+  return (p.dpp - a) / p.b;  // (L/D) cos(sigma) from D'' = a + b (L/D) cos(sigma) (7.17)
 }
 
 double EntryPlanner::sigma_sign_schedule(double energy, double lod_sin_abs, double lod) const {
@@ -404,17 +403,14 @@ double EntryPlanner::energy_at_range(double s_m, int& k, double& w) const {
   return energy;
 }
 
-EntryPlanner::RangePoint EntryPlanner::range_point(double s_m) const {
+EntryPlanner::RangePoint EntryPlanner::range_point_at(int k, double w, bool lift_terms) const {
   RangePoint p;
-  int k;
-  double w;
-  p.energy = energy_at_range(s_m, k, w);
   p.r = r_[k] + w * (r_[k + 1] - r_[k]);
   const double gamma = gamma_[k] + w * (gamma_[k + 1] - gamma_[k]);
   p.drag = d_[k] + w * (d_[k + 1] - d_[k]);
   p.v = v_[k] + w * (v_[k + 1] - v_[k]);
   p.cos_gamma = std::cos(gamma);
-  if (p.energy >= e_corridor_) {  // the lift and Coriolis terms (not in the corridor phase)
+  if (lift_terms) {
     p.tan_gamma = std::tan(gamma);
     p.a0 = a0_[k] + w * (a0_[k + 1] - a0_[k]);
     p.kf = kfac_[k] + w * (kfac_[k + 1] - kfac_[k]);
@@ -422,6 +418,16 @@ EntryPlanner::RangePoint EntryPlanner::range_point(double s_m) const {
     p.dpp = dpp_[k] + w * (dpp_[k + 1] - dpp_[k]);
     p.lod = lod_[k] + w * (lod_[k + 1] - lod_[k]);
   }
+  return p;
+}
+
+EntryPlanner::RangePoint EntryPlanner::range_point(double s_m) const {
+  int k;
+  double w;
+  const double energy = energy_at_range(s_m, k, w);
+  // The lift and Coriolis terms are not needed in the corridor phase (see rop_derivative).
+  RangePoint p = range_point_at(k, w, energy >= e_corridor_);
+  p.energy = energy;
   return p;
 }
 
@@ -438,10 +444,8 @@ void EntryPlanner::rop_derivative(const RangePoint& p, const Rop& y, Rop& dy) co
     dy.chi = cg * (sd / cd) * sc / r;
     return;
   }
-  // Bank magnitude from D'' = a + b (L/D) cos(sigma) (7.17)-(7.19), as bank_magnitude().
   const double drag = p.drag, v = p.v, lod = p.lod;
-  const double a = p.a0 + p.kf * (-2.0 * kEarthRate_radps * cd * sc / (drag * v));  // coriolis_gamma
-  const double lc = clamp((p.dpp - a) / p.b, -lod, lod);
+  const double lc = clamp(vertical_lod(p, cd, sc), -lod, lod);
   const double lod_sin_abs = std::sqrt(lod * lod - lc * lc);  // (7.21)
   const double lod_sin = sigma_sign_schedule(p.energy, lod_sin_abs, lod);
   const double c_chi = -2.0 * kEarthRate_radps * (sd - cd * p.tan_gamma * cc) / (drag * v);  // (2.45)

@@ -99,6 +99,10 @@ class EntryPlanner {
     double a0 = 0.0, kf = 0.0, b = 0.0, dpp = 0.0, lod = 0.0;
   };
   RangePoint range_point(double s_m) const;
+  /// Grid values in cell k at weight w; the bank-extraction coefficients only with lift_terms.
+  RangePoint range_point_at(int k, double w, bool lift_terms) const;
+  /// (L/D) cos(sigma) from D'' = a + b (L/D) cos(sigma) (7.17)-(7.19) at a range point.
+  double vertical_lod(const RangePoint& p, double cos_lat, double sin_chi) const;
   void rop_derivative(const RangePoint& p, const Rop& y, Rop& dy) const;
   double bank_magnitude(int k, double w, double lat, double chi, double& lod) const;
   void rk4(double s_m, const Rop& y, double h, Rop& out) const;
