@@ -12,11 +12,16 @@
 #include <map>
 #include <vector>
 
-#include "app/lcm_codec.hpp"
-#include "app/monotonic_clock.hpp"
+#include "transport/lcm_codec.hpp"
+#include "transport/monotonic_clock.hpp"
 
 namespace reentry::fsw::app {
 namespace {
+
+using transport::decode_into;
+using transport::encode_into;
+using transport::mono_ns;
+using transport::sleep_until_ns;
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
 

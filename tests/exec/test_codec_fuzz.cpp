@@ -13,12 +13,12 @@
 #include <reentry/run_control_t.hpp>
 #include <reentry/truth_telemetry_t.hpp>
 
-#include "app/lcm_codec.hpp"
+#include "transport/lcm_codec.hpp"
 
 namespace {
 
-using reentry::fsw::app::decode_into;
-using reentry::fsw::app::encode_into;
+using reentry::transport::decode_into;
+using reentry::transport::encode_into;
 
 template <class Msg>
 void fuzz_type() {

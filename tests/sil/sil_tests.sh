@@ -72,7 +72,7 @@ PY
       export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
       "$REENTRY_FSW_BIN" --mission x33 --mode realtime > "$dir/fsw.txt" 2>&1 & fsw=$!
       sleep 0.3
-      "$REENTRY_BUILD_DIR/tools/sim_lcm/reentry_sim_lcm" --mission x33 --mode realtime > "$dir/sim.txt" 2>&1 & sim=$!
+      "$REENTRY_BUILD_DIR/sim_truth/app/reentry_sim_lcm" --mission x33 --mode realtime > "$dir/sim.txt" 2>&1 & sim=$!
       sleep 2
       kill -KILL $sim; t0=$(date +%s%N)
       wait $fsw; rc=$?; t1=$(date +%s%N)

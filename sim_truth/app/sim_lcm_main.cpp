@@ -1,4 +1,4 @@
-// reentry_sim_lcm: the truth simulator as an LCM process.
+// reentry_sim_lcm: the truth simulator as an LCM process (sim_truth/app).
 //   publishes NAV_STATE (tick 0 at the entry interface) and TRUTH every GNC tick,
 //   lockstep: waits for the GUIDANCE_CMD of tick k (bounded) before advancing to tick k+1,
 //   realtime: paces itself with absolute deadlines and applies the newest command,
@@ -23,18 +23,18 @@
 #include <string>
 #include <vector>
 
-#include "app/lcm_codec.hpp"
-#include "app/monotonic_clock.hpp"
+#include "transport/lcm_codec.hpp"
+#include "transport/monotonic_clock.hpp"
 #include "dynamics/simulator.hpp"
 #include "evaluation/mission_verdict.hpp"
 #include "reentry/config/mission.hpp"
 
 namespace {
 
-using reentry::fsw::app::decode_into;
-using reentry::fsw::app::encode_into;
-using reentry::fsw::app::mono_ns;
-using reentry::fsw::app::sleep_until_ns;
+using reentry::transport::decode_into;
+using reentry::transport::encode_into;
+using reentry::transport::mono_ns;
+using reentry::transport::sleep_until_ns;
 
 constexpr int kExitOk = 0;
 constexpr int kExitUsage = 2;

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-namespace reentry::fsw::app {
+namespace reentry::transport {
 
 /// Decode `len` bytes into `msg`. Returns true on success; on a malformed or foreign
 /// message (decode < 0, or trailing bytes) increments `bad_messages` and returns false.
@@ -31,4 +31,4 @@ int encode_into(const Msg& msg, std::uint8_t* buf, int cap) {
   return msg.encode(buf, 0, cap);
 }
 
-}  // namespace reentry::fsw::app
+}  // namespace reentry::transport

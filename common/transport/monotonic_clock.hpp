@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <cstdint>
 
-namespace reentry::fsw::app {
+namespace reentry::transport {
 
 inline std::int64_t mono_ns() {
   timespec ts{};
@@ -24,4 +24,4 @@ inline void sleep_until_ns(std::int64_t t_ns) {
   }
 }
 
-}  // namespace reentry::fsw::app
+}  // namespace reentry::transport
