@@ -161,23 +161,23 @@ TEST(RateFilter, HoldsOnNaNAndRejectsBadLimits) {
 
 TEST(Tracker, ScheduledFrequencyFollows313) {
   const double w0 = 0.08, q_ref = 4000.0;
-  EXPECT_DOUBLE_EQ(EntryTracker::scheduled_omega(w0, 0.0, q_ref), 0.0);
-  EXPECT_DOUBLE_EQ(EntryTracker::scheduled_omega(w0, 1000.0, q_ref), w0 * (2.0 * 0.25 - 0.0625));
-  EXPECT_DOUBLE_EQ(EntryTracker::scheduled_omega(w0, 2000.0, q_ref), w0 * 0.75);
-  EXPECT_DOUBLE_EQ(EntryTracker::scheduled_omega(w0, 4000.0, q_ref), w0);
-  EXPECT_DOUBLE_EQ(EntryTracker::scheduled_omega(w0, 9000.0, q_ref), w0);  // held above q_ref
+  EXPECT_DOUBLE_EQ(scheduled_omega(w0, 0.0, q_ref), 0.0);
+  EXPECT_DOUBLE_EQ(scheduled_omega(w0, 1000.0, q_ref), w0 * (2.0 * 0.25 - 0.0625));
+  EXPECT_DOUBLE_EQ(scheduled_omega(w0, 2000.0, q_ref), w0 * 0.75);
+  EXPECT_DOUBLE_EQ(scheduled_omega(w0, 4000.0, q_ref), w0);
+  EXPECT_DOUBLE_EQ(scheduled_omega(w0, 9000.0, q_ref), w0);  // held above q_ref
 }
 
 TEST(Tracker, GainsFollowTheDocumentedRuleUnlessTheMissionOverrides) {
-  config::Mission m;
+  TrackerParams m;
   TrackerGains g = derive_gains(m);
   const double w0 = 2.0 * std::sqrt(9.80665 / 7050.0);
   EXPECT_NEAR(g.omega0_radps, w0, 1e-15);
   EXPECT_NEAR(g.omega0_radps, 0.0746, 1e-4);
   EXPECT_NEAR(g.zeta, 1.0 / std::sqrt(2.0), 1e-15);
   EXPECT_NEAR(g.k_integral, w0 * w0 * w0 / 20.0, 1e-18);
-  m.guidance.omega0_radps = 0.05;
-  m.guidance.zeta = 0.9;
+  m.omega0_radps = 0.05;
+  m.zeta = 0.9;
   g = derive_gains(m);
   EXPECT_DOUBLE_EQ(g.omega0_radps, 0.05);
   EXPECT_DOUBLE_EQ(g.zeta, 0.9);
@@ -912,15 +912,17 @@ TEST(Tracker, TerminalDragLoopSettlesWithinTheTimeToGo) {
   // (zeta = 1/sqrt(2)) within the time to go, up to three times omega0 (bank-rate limit).
   const double omega0 = 2.0 * std::sqrt(kG0_mps2 / 7050.0);
   const double zeta = 1.0 / std::sqrt(2.0);
+  const TrackerParams p;
   for (double t_go : {2.0, 5.0, 10.0, 20.0, 60.0, 300.0}) {
-    const double w = terminal_omega_floor_radps(omega0, t_go);
+    const double w = terminal_omega_floor_radps(omega0, t_go, p.terminal_settling, p.terminal_omega_max_factor);
     EXPECT_LE(w, 3.0 * omega0 * (1.0 + 1e-12)) << t_go;
     if (w < 3.0 * omega0) {
       EXPECT_LE(1.0 / (zeta * w), t_go) << t_go;
     }
   }
-  EXPECT_LT(terminal_omega_floor_radps(omega0, 60.0), omega0);  // far from TAEM: the schedule rules
-  EXPECT_DOUBLE_EQ(terminal_omega_floor_radps(omega0, 0.0), 3.0 * omega0);
+  EXPECT_LT(terminal_omega_floor_radps(omega0, 60.0, p.terminal_settling, p.terminal_omega_max_factor), omega0);
+  EXPECT_DOUBLE_EQ(terminal_omega_floor_radps(omega0, 0.0, p.terminal_settling, p.terminal_omega_max_factor),
+                   3.0 * omega0);
 }
 
 TEST(Tracker, FinalDragTakesOnlyThePartOfTheDragRatioTheInnerTaemBandNeeds) {

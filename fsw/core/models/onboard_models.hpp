@@ -60,6 +60,7 @@ class OnboardAtmosphere {
   static constexpr int kCapacity = 2048;
   static constexpr double kRho0_kgpm3 = 1.225;
   static constexpr double kBeta_pm = 1.0 / 7050.0;
+  static constexpr double kScaleHeight_m = 7050.0;  // 1 / beta (2.20): the gain rule's and the TAEM altitude's H
 
   Status init_exponential();
   /// Reads "altitude_m density pressure temperature" rows ('%' comments). I/O at init only.
