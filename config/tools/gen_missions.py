@@ -115,16 +115,10 @@ replan_drag_error_frac = 0.15
 drag_profile = "smooth"
 initial_drag = "actual"
 onboard_atmosphere = "table"
-rk4_steps = 600
-max_length_iterations = 20
-downrange_tol_m = 1500.0
-crossrange_tol_m = 1000.0
 initial_descent_drag_mps2 = 0.4903325   # 0.05 g (Shuttle practice)
-zeta = 0.7071067811865476
-omega0_radps = 0.0          # 0: derived by the documented rule
-k_integral = 0.0
-k_heading = 0.0
-k_heading_integral = 0.0
+# Every tunable of the planner and the tracker keeps its documented default (the same for all
+# vehicles; `reentry_config_check --params <mission>` lists them with units and ranges). A
+# mission may set any of them here, e.g. [guidance.tracker] corridor_half_width_min_deg = 3.0.
 
 [sim]
 integrator = "rkf56"

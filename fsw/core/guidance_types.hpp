@@ -67,21 +67,6 @@ struct RelativeState {
 /// x bounded to [lo, hi] (lo <= hi); a NaN passes through (the callers check finiteness).
 inline double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
 
-/// Planned fraction of every path-constraint limit (3 % design margin): the planner's
-/// corridor bounds and the tracker's sensed-constraint drag limiter use the same fraction.
-inline constexpr double kConstraintMargin = 0.97;
-
-/// Lateral corridor phase: over the last kLateralCorridorSpanFraction of the entry-to-TAEM
-/// energy span the tracker keeps the vehicle on the arrival great circle with a heading
-/// corridor instead of the planned reversal; the planner's reduced-order trajectory flies
-/// that circle there too, so that planned and flown path lengths agree.
-inline constexpr double kLateralCorridorSpanFraction = 0.30;
-
-/// Terminal phase: over the last kTerminalSpanFraction of the energy span the tracker
-/// controls the range to go with a drag increment and no replans are made (DESIGN §6); the
-/// planner's ranging alpha (which replans apply) ends there.
-inline constexpr double kTerminalSpanFraction = 0.25;
-
 /// A planned reference over energy, produced by the planner, consumed by the tracker.
 /// Points are ordered by decreasing energy (index 0 = planning state, last = TAEM).
 struct ReferenceProfile {

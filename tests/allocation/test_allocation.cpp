@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "guidance/mission_adapter.hpp"
 #include "guidance/guidance_stack.hpp"
 #include "malloc_counter.hpp"
 #include "planner/entry_planner.hpp"
@@ -79,7 +80,7 @@ TEST(Allocation, CompletePlansForTwoMissionsAllocateNothing) {
     const config::Mission m = load(name);
     auto planner = std::make_unique<EntryPlanner>();
     auto profile = std::make_unique<ReferenceProfile>();
-    ASSERT_EQ(planner->init(m), Status::kOk) << name;
+    ASSERT_EQ(init_from_mission(*planner, m), Status::kOk) << name;
     const RelativeState entry = planner->entry_state();
     Status st;
     std::int64_t allocations;

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "guidance/mission_adapter.hpp"
 #include "alpha_planner/alpha_planner.hpp"
 #include "reentry/config/mission.hpp"
 
@@ -84,7 +85,7 @@ double h_glide_b4(double m, double s, double cl, double v, double h_at) {
 
 std::unique_ptr<AlphaPlanner> make_planner(const config::Mission& m) {
   auto p = std::make_unique<AlphaPlanner>();
-  EXPECT_EQ(p->init(m), Status::kOk);
+  EXPECT_EQ(init_from_mission(*p, m), Status::kOk);
   return p;
 }
 

@@ -11,8 +11,14 @@
 #include <string>
 
 #include "reentry/config/mission.hpp"
+#include "temp_mission.hpp"
 
 namespace {
+
+using reentry_test::kConfigDir;
+using reentry_test::replace_once;
+using reentry_test::slurp;
+using reentry_test::TempMission;
 
 using reentry::config::load_mission;
 using reentry::config::LoadResult;
@@ -23,53 +29,6 @@ constexpr double kDeg = kPi / 180.0;
 constexpr double kFt = 0.3048;
 constexpr double kBtuPerFt2s = 1055.05585262 / (kFt * kFt);
 constexpr double kPsf = 4.4482216152605 / (kFt * kFt);
-const std::string kConfigDir = REENTRY_TEST_CONFIG_DIR;
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void replace_once(std::string& text, const std::string& from, const std::string& to) {
-  const size_t pos = text.find(from);
-  ASSERT_NE(pos, std::string::npos) << "fixture text not found: " << from;
-  text.replace(pos, from.size(), to);
-}
-
-class TempMission {
- public:
-  TempMission() {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("reentry_config_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-    mission_ = slurp(kConfigDir + "/missions/x33.toml");
-    vehicle_ = slurp(kConfigDir + "/vehicles/x33.toml");
-  }
-  ~TempMission() {
-    std::error_code ec;
-    std::filesystem::remove_all(dir_, ec);
-  }
-  std::string& mission() { return mission_; }
-  std::string& vehicle() { return vehicle_; }
-  std::string mission_path() const { return (dir_ / "mission.toml").string(); }
-  std::string vehicle_path() const { return (dir_ / "vehicle.toml").string(); }
-  LoadResult load() {
-    std::string m = mission_;
-    replace_once(m, "\"../vehicles/x33.toml\"", "\"vehicle.toml\"");
-    size_t pos;
-    while ((pos = m.find("\"../environment/")) != std::string::npos) m.replace(pos, 16, "\"" + kConfigDir + "/environment/");
-    std::ofstream(mission_path()) << m;
-    std::ofstream(vehicle_path()) << vehicle_;
-    return load_mission(mission_path());
-  }
-
- private:
-  std::filesystem::path dir_;
-  std::string mission_, vehicle_;
-};
 
 TEST(ConfigLoad, AllFourMissionsLoad) {
   for (const char* name : {"horus", "x33", "orbiter", "x38"}) {

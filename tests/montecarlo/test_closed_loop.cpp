@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "guidance/mission_adapter.hpp"
 #include "closed_loop.hpp"
 #include "guidance/alpha_profile_source.hpp"
 #include "models/onboard_models.hpp"
@@ -50,7 +51,7 @@ TEST(ClosedLoop, GuidanceAndTruthAgreeOnTheTaemEnergy) {
     ASSERT_NE(sim, nullptr) << err;
     fsw::EntryPlanner planner;
     static fsw::ReferenceProfile profile;
-    ASSERT_EQ(planner.init(m), fsw::Status::kOk) << name;
+    ASSERT_EQ(init_from_mission(planner, m), fsw::Status::kOk) << name;
     const fsw::Status st = planner.plan(planner.entry_state(), profile);
     ASSERT_TRUE(st == fsw::Status::kOk || st == fsw::Status::kRangeTooLong) << name;
     EXPECT_NEAR(profile.taem_energy_Jpkg, sim->taem_energy_Jpkg(), 1e-9 * sim->taem_energy_Jpkg()) << name;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "guidance/mission_adapter.hpp"
 #include "planner/entry_planner.hpp"
 #include "reference_missions.hpp"
 
@@ -46,7 +47,7 @@ struct Fixture {
 };
 
 bool setup(Fixture& f, const std::string& name, const char* profile, const char* initial_drag, bool mid_flight) {
-  if (f.planner->init(mission(name, profile, initial_drag)) != Status::kOk) return false;
+  if (init_from_mission(*f.planner, mission(name, profile, initial_drag)) != Status::kOk) return false;
   f.from = f.planner->entry_state();
   if (!mid_flight) return true;
   // A state at about half the entry energy on the entry plan.

@@ -216,6 +216,44 @@ class Reader {
 
   bool present() const { return table_ != nullptr; }
 
+  /// Every number of this table not consumed so far, and every entry of the sub-tables named
+  /// in `nested` (as "sub.key"): values that another layer validates. Anything else there
+  /// that is not a finite number is an error here.
+  std::vector<TuningValue> pass_through_numbers(const std::vector<std::string>& nested) {
+    std::vector<TuningValue> out;
+    if (!table_ || sink_->failed()) return out;
+    auto take = [&](const std::string& key, const toml::node& n) {
+      if (!(n.is_integer() || n.is_floating_point())) {
+        fail(key, "expected a number, got " + describe(n));
+        return;
+      }
+      const double v = *n.value<double>();
+      if (!std::isfinite(v)) {
+        fail(key, "value " + fmt_double(v) + " is not finite");
+        return;
+      }
+      out.push_back(TuningValue{key, v, n.is_integer()});
+    };
+    for (const auto& [k, v] : *table_) {
+      const std::string key(k.str());
+      if (used_.count(key)) continue;
+      bool sub = false;
+      for (const auto& name : nested) sub = sub || key == name;
+      if (sub) {
+        used_.insert(key);
+        if (!v.is_table()) {
+          fail(key, "expected a table, got " + describe(v));
+          return out;
+        }
+        for (const auto& [k2, v2] : *v.as_table()) take(key + "." + std::string(k2.str()), v2);
+      } else if (v.is_integer() || v.is_floating_point()) {
+        used_.insert(key);
+        take(key, v);
+      }
+    }
+    return out;
+  }
+
   /// Report the first key that was never consumed (typo or wrong unit suffix).
   void finish() {
     if (!table_ || sink_->failed()) return;
@@ -500,16 +538,10 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
   gp.drag_profile = g.choice("drag_profile", {"three_segment", "smooth"});
   gp.initial_drag = g.choice("initial_drag", {"actual", "lmin"});
   gp.onboard_atmosphere = g.choice("onboard_atmosphere", {"exponential", "table"});
-  gp.rk4_steps = g.integer("rk4_steps", 10, 100000);
-  gp.max_length_iterations = g.integer("max_length_iterations", 1, 1000);
-  gp.downrange_tol_m = g.number("downrange_tol_m", 0.0, 1e6, true);
-  gp.crossrange_tol_m = g.number("crossrange_tol_m", 0.0, 1e6, true);
   gp.initial_descent_drag_mps2 = g.number("initial_descent_drag_mps2", 0.0, 100.0);
-  gp.zeta = g.number("zeta", 0.0, 10.0, true);
-  gp.omega0_radps = g.number("omega0_radps", 0.0, 100.0);
-  gp.k_integral = g.number("k_integral", 0.0, 1e6);
-  gp.k_heading = g.number("k_heading", 0.0, 1e6);
-  gp.k_heading_integral = g.number("k_heading_integral", 0.0, 1e6);
+  // The planner's and tracker's tunables ([guidance] numbers not read above, [guidance.planner],
+  // [guidance.tracker]) are validated by the flight software's parameter lists.
+  gp.tuning = g.pass_through_numbers({"planner", "tracker"});
   g.finish();
 
   Reader s = top.sub("sim");

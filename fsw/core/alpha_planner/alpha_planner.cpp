@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "numerics/root_finding.hpp"
-#include "reentry/config/mission.hpp"
 
 namespace reentry::fsw {
 namespace {
@@ -17,11 +16,10 @@ bool valid_pct(double p) { return std::isfinite(p) && p >= 0.0 && p <= 100.0; }
 
 }  // namespace
 
-Status AlphaPlanner::init(const config::Mission& mission) {
+Status AlphaPlanner::init(const OnboardModels& models, const GuidanceMission& mission) {
   initialised_ = false;
-  const Status s = models_.init(mission);
-  if (s != Status::kOk) return s;
-  const config::PathConstraints& c = mission.constraints;
+  models_ = models;
+  const PathLimits& c = mission.limits;
   if (!(c.alpha_max_rad > 0.0) || !(c.alpha_rate_max_radps > 0.0)) return Status::kInvalidInput;
   if (!(mission.entry.velocity_mps > mission.taem.velocity_mps) || !(mission.taem.velocity_mps > 0.0)) {
     return Status::kInvalidInput;

@@ -13,11 +13,8 @@
 #pragma once
 
 #include "guidance_types.hpp"
+#include "mission_data.hpp"
 #include "models/onboard_models.hpp"
-
-namespace reentry::config {
-struct Mission;
-}
 
 namespace reentry::fsw {
 
@@ -105,7 +102,8 @@ class AlphaPlanner {
   static constexpr double kMaxHeight_m = 150000.0;
   static constexpr int kAlphaScanPoints = 241;
 
-  Status init(const config::Mission& mission);
+  /// The models are copied.
+  Status init(const OnboardModels& models, const GuidanceMission& mission);
   Status plan(const AlphaPlanParams& params, AlphaPlanResult& out) const;
 
   // ---- building blocks (public for tests and tools) --------------------------------------

@@ -2,18 +2,13 @@
 //
 // Simpler than the truth models on purpose (DESIGN §5): central gravity, exponential or
 // tabulated atmosphere, the vehicle's basic aero tables. All data is copied into
-// fixed-capacity arrays by init(); after that nothing allocates and nothing does I/O.
-// Independent code from sim_truth.
+// fixed-capacity arrays at initialisation (the process layer reads the files and hands the
+// arrays over); after that nothing allocates and nothing does I/O. Independent code from
+// sim_truth.
 #pragma once
 
 #include "guidance_types.hpp"
-
-namespace reentry::config {
-struct Mission;
-struct TaemInterface;
-struct AeroModel;
-struct Table1D;
-}  // namespace reentry::config
+#include "mission_data.hpp"
 
 namespace reentry::fsw {
 
@@ -42,7 +37,7 @@ double level_flight_lift_need_mps2(double radius_m, double horizontal_speed_mps,
 double specific_energy_Jpkg(double radius_m, double velocity_mps);
 
 /// The mission gives a Mach band at TAEM (target and a finite tolerance).
-bool has_mach_band(const config::TaemInterface& taem);
+bool has_mach_band(const TaemTarget& taem);
 
 /// V from (E, r) through (7.8); returns a negative value when the energy is too low
 /// for the radius (V^2 < 0), so callers can detect an impossible point.
@@ -54,7 +49,7 @@ double radius_for_speed_m(double energy_Jpkg, double velocity_mps);
 enum class AtmosphereKind { kExponential, kTable };
 
 /// rho(h), d(ln rho)/dr and speed of sound. Exponential: rho0 = 1.225, beta = 1/7050 (7.15);
-/// table: ln(rho) and T linear in altitude between rows of a US76 file read at init.
+/// table: ln(rho) and T linear in altitude between the rows of a US76 table.
 class OnboardAtmosphere {
  public:
   static constexpr int kCapacity = 2048;
@@ -63,8 +58,8 @@ class OnboardAtmosphere {
   static constexpr double kScaleHeight_m = 7050.0;  // 1 / beta (2.20): the gain rule's and the TAEM altitude's H
 
   Status init_exponential();
-  /// Reads "altitude_m density pressure temperature" rows ('%' comments). I/O at init only.
-  Status init_table(const char* path);
+  /// Rows of geometric altitude (strictly increasing), density (> 0) and temperature (> 0).
+  Status init_table(const double* altitude_m, const double* density_kgpm3, const double* temperature_K, int n);
 
   double density_kgpm3(double altitude_m) const;
   double dlnrho_dr_pm(double altitude_m) const;   // (1/rho) d rho / dr
@@ -88,8 +83,7 @@ class OnboardAero {
   static constexpr int kMaxAlpha = 64;
   static constexpr int kMaxMach = 64;
 
-  Status init(const config::AeroModel& aero);
-  /// Direct initialisation from arrays (row-major, values[i_alpha * n_mach + i_mach]).
+  /// Tables over (alpha, Mach), row-major: values[i_alpha * n_mach + i_mach].
   Status init(const double* alpha_rad, int n_alpha, const double* mach, int n_mach,
               const double* cl, const double* cd);
   void coefficients(double alpha_rad, double mach, double& cl, double& cd) const;
@@ -120,7 +114,6 @@ class OnboardAero {
 class AlphaProfile {
  public:
   static constexpr int kCapacity = 64;
-  Status init(const config::Table1D& profile);
   Status init(const double* e_norm, const double* alpha_rad, int n);
   double alpha_rad(double e_norm) const;
 
@@ -133,7 +126,9 @@ class AlphaProfile {
 /// Everything the planner needs about the vehicle and its environment.
 class OnboardModels {
  public:
-  Status init(const config::Mission& mission);
+  /// Vehicle mass, reference area and nose radius (all > 0); the atmosphere and the aero
+  /// tables are initialised through atmosphere() and aero().
+  Status init_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m);
 
   const OnboardAtmosphere& atmosphere() const { return atmosphere_; }
   const OnboardAero& aero() const { return aero_; }
@@ -149,12 +144,12 @@ class OnboardModels {
   /// bands: min over {altitude, Mach} of 1 - |x - x_target| / tol (1: on target, 0: on an
   /// edge, < 0: outside); the altitude band alone when no Mach band is given (has_mach_band).
   /// Needs altitude_tol_m > 0.
-  double taem_band_depth(const config::TaemInterface& taem, double taem_energy_Jpkg, double altitude_m) const;
+  double taem_band_depth(const TaemTarget& taem, double taem_energy_Jpkg, double altitude_m) const;
   /// Speed at the TAEM energy at a height above the ellipsoid over the aim point (the energy
   /// (7.8) is taken at the radius surface_radius_m(aim latitude) + height).
   static double taem_speed_mps(double aim_latitude_rad, double taem_energy_Jpkg, double altitude_m);
   /// The altitude term of taem_band_depth alone. Needs altitude_tol_m > 0.
-  static double taem_altitude_depth(const config::TaemInterface& taem, double altitude_m);
+  static double taem_altitude_depth(const TaemTarget& taem, double altitude_m);
   /// Drag acceleration D = rho V^2 CD S / (2 m)  (D.1).
   double drag_mps2(double alpha_rad, double altitude_m, double velocity_mps) const;
   double lift_mps2(double alpha_rad, double altitude_m, double velocity_mps) const;

@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "planner/mission_geometry.hpp"
-#include "reentry/config/mission.hpp"
 
 namespace reentry::fsw {
 namespace {
@@ -19,30 +18,39 @@ bool finite_state(const RelativeState& s) {
 
 }  // namespace
 
-Status EntryTracker::init(const OnboardModels& models, const AlphaProfile& alpha_profile, const TrackerMission& mission,
-                          const TrackerParams& params) {
+Status EntryTracker::init(const OnboardModels& models, const AlphaProfile& alpha_profile,
+                          const GuidanceMission& mission, const GuidanceLawParams& params) {
   initialised_ = false;
-  if (tracker_params_inconsistency(params) != nullptr) return Status::kInvalidInput;
-  params_ = params;
+  if (guidance_params_inconsistency(params) != nullptr) return Status::kInvalidInput;
+  params_ = params.tracker;
   models_ = models;
   alpha_profile_ = alpha_profile;
-  mission_ = mission;
+  taem_ = mission.taem;
+  entry_energy_Jpkg_ = specific_energy_Jpkg(kEarthRadius_m + mission.entry.altitude_m, mission.entry.velocity_mps);
+  taem_energy_Jpkg_ =
+      specific_energy_Jpkg(surface_radius_m(mission.taem.latitude_rad) + mission.taem.altitude_m, mission.taem.velocity_mps);
+  const PathLimits& c = mission.limits;
+  limits_.alpha_max_rad = c.alpha_max_rad;
+  limits_.sigma_rate_max_radps = c.sigma_rate_max_radps;
+  limits_.heat_flux_max_Wpm2 = c.heat_flux_max_Wpm2;
+  limits_.q_alpha_max_Pa_rad = c.q_alpha_max_Pa_rad;
+  limits_.q_max_Pa = c.dynamic_pressure_max_Pa;
+  limits_.load_factor_max_mps2 = c.load_factor_max_g * kG0_mps2;
+  limits_.constraint_margin = params.constraint_margin;
   const TrackerGains gains = derive_gains(params_);
-  if (!(mission_.entry_energy_Jpkg > mission_.taem_energy_Jpkg)) return Status::kInvalidInput;
-  if (!(mission_.limits.sigma_rate_max_radps > 0.0) || !(gains.omega0_radps > 0.0)) return Status::kInvalidInput;
-  if (!(mission_.terminal_span_fraction <= mission_.lateral_corridor_span_fraction)) return Status::kInvalidInput;
-  const double e_taem_norm = mission_.taem_energy_Jpkg / mission_.entry_energy_Jpkg;
-  const double e_terminal_norm = e_taem_norm + mission_.terminal_span_fraction * (1.0 - e_taem_norm);
-  const double e_corridor_norm = e_taem_norm + mission_.lateral_corridor_span_fraction * (1.0 - e_taem_norm);
-  const double rate = mission_.limits.sigma_rate_max_radps;
+  if (!(entry_energy_Jpkg_ > taem_energy_Jpkg_)) return Status::kInvalidInput;
+  if (!(limits_.sigma_rate_max_radps > 0.0) || !(gains.omega0_radps > 0.0)) return Status::kInvalidInput;
+  const double e_taem_norm = taem_energy_Jpkg_ / entry_energy_Jpkg_;
+  const double e_terminal_norm = e_taem_norm + params.terminal_span_fraction * (1.0 - e_taem_norm);
+  const double e_corridor_norm = e_taem_norm + params.lateral_corridor_span_fraction * (1.0 - e_taem_norm);
+  const double rate = limits_.sigma_rate_max_radps;
   phases_.init(e_corridor_norm, e_terminal_norm);
   reference_.init(params_.q_ref_fraction);
   estimator_.init(models_, params_);
   drag_loop_.init(gains, params_);
-  limiter_.init(models_, params_, mission_.limits);
-  terminal_.init(models_, params_, mission_.taem, e_terminal_norm * mission_.entry_energy_Jpkg,
-                 mission_.taem_energy_Jpkg);
-  lateral_.init(params_, mission_.taem, rate, e_taem_norm, e_corridor_norm);
+  limiter_.init(models_, params_, limits_);
+  terminal_.init(models_, params_, taem_, e_terminal_norm * entry_energy_Jpkg_, taem_energy_Jpkg_);
+  lateral_.init(params_, taem_, rate, e_taem_norm, e_corridor_norm);
   reversal_.init(models_, params_, rate);
   last_alpha_cmd_rad_ = 0.0;
   last_sigma_d_rad_ = 0.0;
@@ -52,52 +60,12 @@ Status EntryTracker::init(const OnboardModels& models, const AlphaProfile& alpha
   return Status::kOk;
 }
 
-Status EntryTracker::init(const config::Mission& mission) {
-  OnboardModels models;
-  Status st = models.init(mission);
-  if (st != Status::kOk) return st;
-  AlphaProfile alpha;
-  st = alpha.init(mission.alpha_profile);
-  if (st != Status::kOk) return st;
-  TrackerMission m;
-  m.entry_energy_Jpkg = specific_energy_Jpkg(kEarthRadius_m + mission.entry.altitude_m, mission.entry.velocity_mps);
-  m.taem_energy_Jpkg = specific_energy_Jpkg(surface_radius_m(mission.taem.latitude_rad) + mission.taem.altitude_m,
-                                            mission.taem.velocity_mps);
-  m.taem = mission.taem;
-  const config::PathConstraints& c = mission.constraints;
-  m.limits.alpha_max_rad = c.alpha_max_rad;
-  m.limits.sigma_rate_max_radps = c.sigma_rate_max_radps;
-  m.limits.heat_flux_max_Wpm2 = c.heat_flux_max_Wpm2;
-  m.limits.q_alpha_max_Pa_rad = c.q_alpha_max_Pa_rad;
-  m.limits.q_max_Pa = c.dynamic_pressure_max_Pa;
-  m.limits.load_factor_max_mps2 = c.load_factor_max_g * kG0_mps2;
-  m.limits.constraint_margin = kConstraintMargin;
-  m.lateral_corridor_span_fraction = kLateralCorridorSpanFraction;
-  m.terminal_span_fraction = kTerminalSpanFraction;
-  TrackerParams p;
-  const config::GuidanceParams& g = mission.guidance;
-  p.initial_descent_drag_mps2 = g.initial_descent_drag_mps2;
-  if (g.zeta > 0.0) p.zeta = g.zeta;
-  p.omega0_radps = g.omega0_radps;
-  p.k_integral_ps3 = g.k_integral;
-  return init(models, alpha, m, p);
-}
-
 void EntryTracker::bind_components() {
   estimator_.bind(models_, params_);
   limiter_.bind(models_, params_);
   terminal_.bind(models_, params_);
   lateral_.bind(params_);
   reversal_.bind(models_, params_);
-}
-
-const char* tracker_params_inconsistency(const TrackerParams& p) {
-  if (!(p.corridor_half_width_min_rad <= p.corridor_half_width_max_rad)) return "corridor_half_width_min_deg";
-  if (!(p.drag_ratio_min < p.drag_ratio_max)) return "drag_ratio_min";
-  if (!(p.lod_ratio_min < p.lod_ratio_max)) return "lod_ratio_min";
-  if (!(p.corridor_modulation_max_rad <= p.final_modulation_max_rad)) return "corridor_modulation_max_deg";
-  if (!(p.initial_descent_drag_mps2 >= 0.0)) return "initial_descent_drag_mps2";
-  return nullptr;
 }
 
 Status EntryTracker::check_input(const RelativeState& s, double dt_s) const {
@@ -138,7 +106,7 @@ void EntryTracker::try_capture(const RelativeState& s) {
     return;
   }
   const double d_ref =
-      reference_.at(s.energy_Jpkg - params_.capture_lookahead_energy_fraction * mission_.entry_energy_Jpkg).drag;
+      reference_.at(s.energy_Jpkg - params_.capture_lookahead_energy_fraction * entry_energy_Jpkg_).drag;
   const double d_pullout = limiter_.pullout_drag_mps2(s, 0.0);
   if (d_pullout < d_ref || (s.drag_mps2 >= threshold && d_pullout < params_.pullout_complete_ratio * s.drag_mps2)) {
     phases_.capture();
@@ -150,7 +118,7 @@ CycleContext EntryTracker::make_context(const RelativeState& s, double dt_s, con
   CycleContext c;
   c.state = &s;
   c.dt_s = dt_s;
-  c.e_norm = s.energy_Jpkg / mission_.entry_energy_Jpkg;
+  c.e_norm = s.energy_Jpkg / entry_energy_Jpkg_;
   c.mach = models_.mach(s.altitude_m, s.velocity_mps);
   c.alpha_flown_rad = alpha_flown_rad;
   c.alpha_ref_rad = alpha_ref_rad;
@@ -173,9 +141,9 @@ CycleContext EntryTracker::make_context(const RelativeState& s, double dt_s, con
   // Time to TAEM at the present drag with the speed falling linearly to the TAEM speed
   // (E' = -D V): with the present speed instead, t_go comes out 25-35 % short.
   const double V = s.velocity_mps;
-  c.taem_speed_mps = std::fmin(mission_.taem.velocity_mps, V);
+  c.taem_speed_mps = std::fmin(taem_.velocity_mps, V);
   c.time_to_go_s =
-      (s.energy_Jpkg - mission_.taem_energy_Jpkg) / std::fmax(s.drag_mps2 * 0.5 * (V + c.taem_speed_mps), 1e-6);
+      (s.energy_Jpkg - taem_energy_Jpkg_) / std::fmax(s.drag_mps2 * 0.5 * (V + c.taem_speed_mps), 1e-6);
   c.sigma_flown_rad = flown_bank_rad();
   phases_.advance(c.e_norm, lateral_.in_final_reversal_window(c.time_to_go_s));
   if (phases_.heading_corridor()) c.target = lateral_.arrival_line_target(s);
@@ -216,7 +184,7 @@ DragLoopCommand EntryTracker::drag_command(const CycleContext& c, const RefPoint
   // Actual D' from (7.14): density gradient and C_D' from the on-board models, alpha along the
   // plan (which may differ from the mission profile: ranging alpha).
   const double dlnrho_dr = models_.dlnrho_dr_fd(s.altitude_m, 100.0);
-  const double de = 1e-3 * mission_.entry_energy_Jpkg;
+  const double de = 1e-3 * entry_energy_Jpkg_;
   const double cd_slope =
       models_.drag_coefficient_slope(ref.alpha + ref.alpha_prime * de, s.energy_Jpkg + de, s.altitude_m,
                                      ref.alpha - ref.alpha_prime * de, s.energy_Jpkg - de, s.altitude_m);
@@ -260,7 +228,7 @@ DragLoopCommand EntryTracker::drag_command(const CycleContext& c, const RefPoint
 
 int EntryTracker::bank_sign(const CycleContext& c, const RefPoint& ref, double sigma_d_rad, TrackerOutput& out) {
   const RelativeState& s = *c.state;
-  const double rate = mission_.limits.sigma_rate_max_radps;
+  const double rate = limits_.sigma_rate_max_radps;
   const double t_rev_s = 2.0 * sigma_d_rad / rate;
   LateralInput in;
   in.state = &s;
@@ -296,9 +264,9 @@ int EntryTracker::bank_sign(const CycleContext& c, const RefPoint& ref, double s
 Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& out) {
   const Status input = check_input(s, dt_s);
   if (input != Status::kOk) return input;
-  const double e_norm = s.energy_Jpkg / mission_.entry_energy_Jpkg;
+  const double e_norm = s.energy_Jpkg / entry_energy_Jpkg_;
   out = TrackerOutput{};
-  out.alpha_rad = clamp(alpha_profile_.alpha_rad(e_norm), 0.0, mission_.limits.alpha_max_rad);
+  out.alpha_rad = clamp(alpha_profile_.alpha_rad(e_norm), 0.0, limits_.alpha_max_rad);
   const double alpha_flown = flown_alpha_rad(out.alpha_rad);
   estimator_.update_lift_over_drag_ratio(s, alpha_flown, dt_s);
   out.lift_over_drag_scale = estimator_.lift_over_drag_ratio();
@@ -311,7 +279,7 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
     return Status::kOk;
   }
   RefPoint ref = reference_.at(s.energy_Jpkg);
-  out.alpha_rad = clamp(ref.alpha, 0.0, mission_.limits.alpha_max_rad);
+  out.alpha_rad = clamp(ref.alpha, 0.0, limits_.alpha_max_rad);
   const double alpha_ref = out.alpha_rad;  // before any reversal modulation or load relief
   estimator_.update_drag_ratio(s, alpha_flown, dt_s);
   const CycleContext c = make_context(s, dt_s, ref, alpha_flown, alpha_ref);

@@ -17,6 +17,7 @@
 // bounded loops.
 #pragma once
 
+#include "guidance_params.hpp"
 #include "guidance_types.hpp"
 #include "mission_data.hpp"
 #include "models/onboard_models.hpp"
@@ -66,23 +67,16 @@ struct TrackerOutput {
   TrackerTelemetry telemetry;
 };
 
-/// What the tracker needs of the mission (the rest comes from the on-board models).
-struct TrackerMission {
-  double entry_energy_Jpkg = 0.0;     // E at the entry interface (normalisation)
-  double taem_energy_Jpkg = 0.0;      // E at the TAEM interface
-  TaemTarget taem{};                  // aim point, arrival heading, speed and bands
-  TrackerLimits limits;               // path and control limits, planned margin
-  double lateral_corridor_span_fraction = 0.30;  // shared with the planner (guidance_types.hpp)
-  double terminal_span_fraction = 0.25;
-};
-
 /// The tracker's data: its parameters, models and components (copyable as values; the
 /// components' pointers to the models and parameters are re-bound by EntryTracker's copies).
 struct EntryTrackerData {
   TrackerParams params_;
   OnboardModels models_;
   AlphaProfile alpha_profile_;
-  TrackerMission mission_;
+  TaemTarget taem_{};               // aim point, arrival heading, speed and bands
+  TrackerLimits limits_;            // path and control limits, planned margin
+  double entry_energy_Jpkg_ = 0.0;  // E at the entry interface (normalisation)
+  double taem_energy_Jpkg_ = 0.0;   // E at the TAEM interface
   bool initialised_ = false;
 
   TrackerPhaseMachine phases_;
@@ -110,10 +104,10 @@ class EntryTracker : private EntryTrackerData {
     return *this;
   }
 
-  /// The models are copied; params and gains (derive_gains by default) are kept by value.
-  Status init(const OnboardModels& models, const AlphaProfile& alpha_profile, const TrackerMission& mission,
-              const TrackerParams& params);
-  Status init(const config::Mission& mission);
+  /// The models, the alpha profile and params.tracker are copied; the gains follow
+  /// derive_gains unless params.tracker sets them.
+  Status init(const OnboardModels& models, const AlphaProfile& alpha_profile, const GuidanceMission& mission,
+              const GuidanceLawParams& params);
   /// Copies the profile (no allocation); a plan that cannot be tracked is ignored.
   void set_profile(const ReferenceProfile& profile) { reference_.adopt(profile); }
   /// alpha and bank out of the command rate filters last cycle (what the vehicle flies, up to

@@ -115,8 +115,15 @@ void visit_tracker_params(Params& p, Visitor&& v) {
   v("max_accel_mps2", p.max_accel_mps2, U::kNone, 10.0, 1e4, "sensed acceleration beyond this is rejected");
 }
 
-/// Relations between fields that single ranges cannot state; the name of the first field that
+/// Relations between fields that single ranges cannot state: the key of the first field that
 /// breaks one (nullptr when all hold).
-const char* tracker_params_inconsistency(const TrackerParams& p);
+inline const char* tracker_params_inconsistency(const TrackerParams& p) {
+  if (!(p.corridor_half_width_min_rad <= p.corridor_half_width_max_rad)) return "corridor_half_width_min_deg";
+  if (!(p.drag_ratio_min < p.drag_ratio_max)) return "drag_ratio_min";
+  if (!(p.lod_ratio_min < p.lod_ratio_max)) return "lod_ratio_min";
+  if (!(p.corridor_modulation_max_rad <= p.final_modulation_max_rad)) return "corridor_modulation_max_deg";
+  if (!(p.initial_descent_drag_mps2 >= 0.0)) return "initial_descent_drag_mps2";
+  return nullptr;
+}
 
 }  // namespace reentry::fsw

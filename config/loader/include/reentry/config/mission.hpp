@@ -101,6 +101,16 @@ struct PathConstraints {
   double sigma_accel_max_radps2 = 0.0;
 };
 
+/// A number of the [guidance] section that the loader passes through uninterpreted: the
+/// tunables of the planner and the tracker, which the flight software's own parameter lists
+/// validate (fsw/guidance/mission_adapter). Keys of [guidance.planner] / [guidance.tracker]
+/// come as "planner.<key>" / "tracker.<key>".
+struct TuningValue {
+  std::string key;
+  double value = 0.0;
+  bool integer = false;  // written as a TOML integer
+};
+
 struct GuidanceParams {
   double gnc_rate_hz = 10.0;
   int plan_latency_ticks = 5;            // lockstep: plan requested at k is adopted at k + L
@@ -109,17 +119,8 @@ struct GuidanceParams {
   std::string drag_profile = "smooth";   // "three_segment" (thesis 7.2) or "smooth"
   std::string initial_drag = "actual";   // "actual" or "lmin" (thesis 7.6)
   std::string onboard_atmosphere = "exponential";  // "exponential" or "table"
-  int rk4_steps = 600;                   // reduced-order integration steps
-  int max_length_iterations = 20;
-  double downrange_tol_m = 1500.0;
-  double crossrange_tol_m = 1000.0;
   double initial_descent_drag_mps2 = 0.05 * 9.80665;  // hold attitude until sensed drag exceeds this
-  // Tracker (thesis 3.12-3.22); where zero, derived from vehicle/corridor data by the documented rule.
-  double zeta = 0.7071067811865476;
-  double omega0_radps = 0.0;
-  double k_integral = 0.0;
-  double k_heading = 0.0;
-  double k_heading_integral = 0.0;
+  std::vector<TuningValue> tuning;       // planner / tracker tunables, in file order of their tables
 };
 
 struct SimParams {
