@@ -87,7 +87,31 @@ bool GuidanceNode::cycle(const nav_state_t& nav, guidance_cmd_t& cmd, guidance_s
   status.skipped_ticks = c.skipped_ticks;
   status.drag_err_mps2 = out.drag_err_mps2;
   status.heading_err_rad = out.heading_err_rad;
+  fill_tracker_status(nav, out.tracker);
   return true;
+}
+
+void GuidanceNode::fill_tracker_status(const nav_state_t& nav, const TrackerTelemetry& t) {
+  tracker_status_t& m = tracker_;
+  m.utime = nav.utime;
+  m.tick = nav.tick;
+  m.phase = static_cast<std::int8_t>(t.phase);
+  m.flags = static_cast<std::int8_t>((t.reversing ? 1 : 0) | (t.final_reversal_done ? 2 : 0) |
+                                     (t.final_correction_done ? 4 : 0) | (t.pullout_arrested ? 8 : 0) |
+                                     (t.saturated ? 16 : 0));
+  m.drag_ref_mps2 = t.drag_ref_mps2;
+  m.drag_err_mps2 = t.drag_err_mps2;
+  m.drag_integral_mps = t.drag_integral_mps;
+  m.omega_radps = t.omega_radps;
+  m.drag_ratio = t.drag_ratio;
+  m.lift_over_drag_ratio = t.lift_over_drag_ratio;
+  m.corridor_half_width_rad = t.corridor_half_width_rad;
+  m.heading_err_rad = t.heading_err_rad;
+  m.terminal_increment_mps2 = t.terminal_increment_mps2;
+  m.time_to_go_s = t.time_to_go_s;
+  m.mean_bank_rad = t.mean_bank_rad;
+  m.cross_track_m = t.cross_track_m;
+  m.along_track_m = t.along_track_m;
 }
 
 void GuidanceNode::fill_plan(std::int64_t tick) {
@@ -125,6 +149,8 @@ void GuidanceNode::publish_cycle(lcm::LCM& lcm, bool plan_adopted) {
   if (n > 0) lcm.publish("GUIDANCE_CMD", tx_, static_cast<unsigned>(n));
   n = encode_into(status_, tx_, static_cast<int>(sizeof tx_));
   if (n > 0) lcm.publish("GUIDANCE_STATUS", tx_, static_cast<unsigned>(n));
+  n = encode_into(tracker_, tx_, static_cast<int>(sizeof tx_));
+  if (n > 0) lcm.publish("TRACKER_STATUS", tx_, static_cast<unsigned>(n));
   if (plan_adopted) {
     fill_plan(cmd_.tick);
     n = encode_into(plan_, tx_, static_cast<int>(sizeof tx_));

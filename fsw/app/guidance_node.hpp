@@ -11,6 +11,7 @@
 #include <reentry/guidance_status_t.hpp>
 #include <reentry/nav_state_t.hpp>
 #include <reentry/plan_t.hpp>
+#include <reentry/tracker_status_t.hpp>
 #include <reentry/run_control_t.hpp>
 #include <string>
 
@@ -54,6 +55,7 @@ class GuidanceNode {
   static void on_nav(const lcm::ReceiveBuffer* rbuf, const std::string& channel, GuidanceNode* self);
   static void on_run_control(const lcm::ReceiveBuffer* rbuf, const std::string& channel, GuidanceNode* self);
   void publish_cycle(lcm::LCM& lcm, bool plan_adopted);
+  void fill_tracker_status(const nav_state_t& nav, const TrackerTelemetry& t);
   void publish_safe_status(lcm::LCM& lcm);
   void fill_plan(std::int64_t tick);
 
@@ -71,6 +73,7 @@ class GuidanceNode {
   guidance_cmd_t cmd_{};
   guidance_status_t status_{};
   plan_t plan_{};
+  tracker_status_t tracker_{};
   std::uint8_t tx_[65000] = {};
   std::int32_t bad_messages_ = 0;
   std::int32_t cycle_overruns_ = 0;

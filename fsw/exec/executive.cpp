@@ -245,6 +245,7 @@ CycleOutput Executive::step(const NavInput& nav) {
   out.drag_ref_mps2 = law.drag_ref_mps2;
   out.drag_err_mps2 = law.drag_err_mps2;
   out.heading_err_rad = law.heading_err_rad;
+  out.tracker = law.tracker;
   if (law_status == Status::kOk && std::isfinite(law.lift_over_drag_scale) && law.lift_over_drag_scale > 0.0) {
     lift_over_drag_scale_ = law.lift_over_drag_scale;
   }

@@ -51,6 +51,7 @@ struct LawOutput {
   double drag_err_mps2 = 0.0;
   double heading_err_rad = 0.0;
   double lift_over_drag_scale = 1.0;  // in-flight L/D estimate over the model's, for the planner
+  TrackerTelemetry tracker;           // the law's internal state (telemetry only)
 };
 
 class CommandLaw {
@@ -91,6 +92,7 @@ struct CycleOutput {
   double drag_err_mps2 = 0.0;    // sensed drag referred to the reference alpha, minus the reference
   double heading_err_rad = 0.0;
   bool plan_adopted = false;     // a plan was adopted in this cycle
+  TrackerTelemetry tracker;      // the law's internal state this cycle (telemetry only)
 };
 
 struct ExecCounters {

@@ -22,6 +22,7 @@ Status TrackerLaw::step(const RelativeState& s, double dt_s, bool /*has_profile*
   out.drag_err_mps2 = last.drag_err_mps2;
   out.heading_err_rad = last.heading_err_rad;
   out.lift_over_drag_scale = last.lift_over_drag_scale;
+  out.tracker = last.telemetry;
   return Status::kOk;
 }
 

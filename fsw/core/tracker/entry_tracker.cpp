@@ -314,6 +314,10 @@ Status EntryTracker::step(const RelativeState& s, double dt_s, TrackerOutput& ou
 
 void EntryTracker::finish_output(const CycleContext& c, TrackerOutput& out) {
   TrackerTelemetry& t = out.telemetry;
+  t.drag_ref_mps2 = out.drag_ref_mps2;
+  t.drag_err_mps2 = out.drag_err_mps2;
+  t.heading_err_rad = out.heading_err_rad;
+  t.saturated = out.saturated;
   if (phases_.captured() && c.state != nullptr) {
     out.phase = reversal_.active(c.state->t_s) ? Phase::kReversal : Phase::kTracking;
     t.reversing = reversal_.active(c.state->t_s);
