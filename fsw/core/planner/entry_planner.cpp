@@ -634,8 +634,7 @@ bool EntryPlanner::lateral_short() const {
   // Judged only in the first tenth of the energy span, before the heat pulse: later, a
   // best-effort plan just after a flown reversal is normal (the lateral corridor steers the
   // rest out), and moving alpha then swaps a profile on the heat-flux limit for one the
-  // vehicle cannot reach without exceeding it (a dispersed HORUS run at E/E_entry = 0.55:
-  // alpha 43.9 -> 20 deg, 750 kW/m^2, 2181 km long).
+  // vehicle cannot reach without exceeding it.
   const double early = taem_energy_ + params_.lateral_move_span_fraction * (entry_energy_ - taem_energy_);
   return from_.energy_Jpkg > early &&
          (lateral_unreachable_ || (diag_.reversal_best_effort && std::fabs(diag_.crossrange_err_m) > params_.crossrange_tol_m));
@@ -698,6 +697,62 @@ void EntryPlanner::set_ranging_blend(double blend) {
 }
 
 // ------------------------------------------------------------------ plan
+Status EntryPlanner::set_planning_state() {
+  if (!finite_state(from_)) return Status::kNonFinite;
+  // In-flight L/D estimate (1 before the drag is measurable): the corridor floor (7.7), the
+  // equilibrium-glide radius and the bank extraction then use the vehicle's sensed L/D.
+  const double lod_scale = from_.lift_over_drag_scale;
+  if (!(lod_scale >= params_.lift_scale_min && lod_scale <= params_.lift_scale_max)) return Status::kInvalidInput;
+  models_.aero().set_lift_scale(lod_scale);
+  if (!(from_.energy_Jpkg > taem_energy_ * 1.001) || !(from_.radius_m > kEarthRadius_m)) return Status::kInvalidInput;
+
+  // Mission geometry (7.1), (7.2) from the planning position to the TAEM point.
+  const GreatCircle gc = great_circle(from_.latitude_rad, from_.longitude_rad, taem_lat_, taem_lon_);
+  a_mission_ = gc.azimuth_rad;
+  diag_.b_mission_rad = gc.arc_rad;
+  diag_.a_mission_rad = gc.azimuth_rad;
+  diag_.chi_minus_a_rad = wrap_pi(from_.heading_rad - a_mission_);
+  sign0_ = initial_bank_sign(from_.heading_rad, a_mission_);
+  diag_.initial_bank_sign = sign0_;
+  r_mean_ = 0.5 * (from_.radius_m + taem_radius_);
+  diag_.s_initial_m = gc.arc_rad * r_mean_;  // R_d, the first length S0 (7.22)
+  return Status::kOk;
+}
+
+Status EntryPlanner::ranging_alpha(double range_desired, double d_actual, Status first, double& s_m, double& s_rev,
+                                   bool& converged) {
+  // Ranging alpha (thesis 6.3.1, ranging phase): the range needs less drag than the vehicle
+  // can hold even wings level at the profile alpha (low L/D, a long way to go). alpha moves
+  // towards alpha(L/D max) from the planning point to near TAEM; the smallest move that lifts
+  // the floor below the needed drag is found by bisection on the blend (the full move when
+  // even that is not enough: the longest range the vehicle can fly). The same move is made
+  // when no single reversal can null the crossrange early in the flight (lateral_short: a
+  // vehicle that needs too little bank for its range cannot turn). Once used, the blend never
+  // decreases in later plans, so the alpha reference stays continuous from plan to plan.
+  alpha_ld_max_on_grid();
+  auto feasible = [&](double blend) {
+    set_ranging_blend(blend);
+    double s_trial = range_desired;
+    bool conv_trial = false;
+    if (prepare_corridor(d_actual) != Status::kOk) return false;
+    return length_iteration(range_desired, s_trial, s_rev, conv_trial) == Status::kOk && !below_glide_floor() &&
+           !lateral_short();
+  };
+  double lo = ranging_blend_min_, hi = 1.0;
+  if (ranging_blend_min_ > 0.0 && feasible(ranging_blend_min_)) hi = lo;
+  for (int i = 0; i < params_.ranging_bisections && hi - lo > params_.ranging_blend_tol; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (feasible(mid)) hi = mid;
+    else lo = mid;
+  }
+  set_ranging_blend(hi);
+  s_m = range_desired;
+  Status s = prepare_corridor(d_actual);
+  if (s == Status::kOk) s = length_iteration(range_desired, s_m, s_rev, converged);
+  if (s != Status::kOk && first != Status::kOk) s = first;  // report the original failure
+  return s;
+}
+
 Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   diag_ = PlannerDiagnostics{};
   out.status = Status::kInvalidInput;
@@ -716,26 +771,10 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
     return s;
   };
 
-  if (!finite_state(from_)) return fail(Status::kNonFinite);
-  // In-flight L/D estimate (1 before the drag is measurable): the corridor floor (7.7), the
-  // equilibrium-glide radius and the bank extraction then use the vehicle's sensed L/D.
-  const double lod_scale = from_.lift_over_drag_scale;
-  if (!(lod_scale >= params_.lift_scale_min && lod_scale <= params_.lift_scale_max)) return fail(Status::kInvalidInput);
-  models_.aero().set_lift_scale(lod_scale);
-  if (!(from_.energy_Jpkg > taem_energy_ * 1.001) || !(from_.radius_m > kEarthRadius_m)) return fail(Status::kInvalidInput);
-
-  // Mission geometry (7.1), (7.2) from the planning position to the TAEM point.
-  const GreatCircle gc = great_circle(from_.latitude_rad, from_.longitude_rad, taem_lat_, taem_lon_);
-  a_mission_ = gc.azimuth_rad;
-  diag_.b_mission_rad = gc.arc_rad;
-  diag_.a_mission_rad = gc.azimuth_rad;
-  diag_.chi_minus_a_rad = wrap_pi(from_.heading_rad - a_mission_);
-  sign0_ = initial_bank_sign(from_.heading_rad, a_mission_);
-  diag_.initial_bank_sign = sign0_;
-  r_mean_ = 0.5 * (from_.radius_m + taem_radius_);
-  const double range_desired = gc.arc_rad * r_mean_;  // R_d
-  double s_m = range_desired;                          // S0
-  diag_.s_initial_m = s_m;
+  const Status state = set_planning_state();
+  if (state != Status::kOk) return fail(state);
+  const double range_desired = diag_.s_initial_m;  // R_d
+  double s_m = range_desired;                      // S0
 
   const double alpha_from = alpha_profile_.alpha_rad(from_.energy_Jpkg / entry_energy_);
   const double d_actual = from_.drag_mps2 > 0.0
@@ -751,38 +790,7 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   const Status first = s;
   const bool lateral = lateral_short();
   if ((s == Status::kOk || lateral) && (ranging_blend_min_ > 0.0 || lateral || below_glide_floor())) {
-    // Ranging alpha (thesis 6.3.1, ranging phase): the range needs less drag than the
-    // vehicle can hold even wings level at the profile alpha (low L/D, a long way to go).
-    // alpha moves towards alpha(L/D max) from the planning point to near TAEM; the smallest
-    // move that lifts the floor below the needed drag is found by bisection on the blend
-    // (the full move when even that is not enough: the longest range the vehicle can fly).
-    // The same move is made when no single reversal can null the crossrange early in the
-    // flight (lateral_short): at the profile alpha the X-38 needs so little bank for its
-    // 9360 km that it cannot turn. Once used, the blend never decreases in later plans, so
-    // the alpha reference stays continuous from plan to plan. (Aiming the blend at a bank
-    // margin above the floor was measured worse: 500 dispersed X-33 runs 61.4 % with 10 deg,
-    // 67.8 % with none.)
-    alpha_ld_max_on_grid();
-    auto feasible = [&](double blend) {
-      set_ranging_blend(blend);
-      double s_trial = range_desired;
-      bool conv_trial = false;
-      if (prepare_corridor(d_actual) != Status::kOk) return false;
-      return length_iteration(range_desired, s_trial, s_rev, conv_trial) == Status::kOk && !below_glide_floor() &&
-             !lateral_short();
-    };
-    double lo = ranging_blend_min_, hi = 1.0;
-    if (ranging_blend_min_ > 0.0 && feasible(ranging_blend_min_)) hi = lo;
-    for (int i = 0; i < params_.ranging_bisections && hi - lo > params_.ranging_blend_tol; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      if (feasible(mid)) hi = mid;
-      else lo = mid;
-    }
-    set_ranging_blend(hi);
-    s_m = range_desired;
-    s = prepare_corridor(d_actual);
-    if (s == Status::kOk) s = length_iteration(range_desired, s_m, s_rev, converged);
-    if (s != Status::kOk && first != Status::kOk) s = first;  // report the original failure
+    s = ranging_alpha(range_desired, d_actual, first, s_m, s_rev, converged);
   }
   const bool too_long = s == Status::kRangeTooLong;
   if (s != Status::kOk && !too_long) return fail(s);

@@ -77,6 +77,8 @@ class EntryPlanner {
  private:
   struct Rop { double lon, lat, chi; };   // reduced-order state (2.42)-(2.44)
 
+  Status set_planning_state();
+  Status ranging_alpha(double range_desired, double d_actual, Status first, double& s_m, double& s_rev, bool& converged);
   Status build_grid(double e0, bool graded);
   Status prepare_corridor(double d_actual);
   Status length_iteration(double range_desired, double& s_m, double& s_rev, bool& converged);
