@@ -50,7 +50,7 @@ struct TrackerParams {
   double modulation_bound_margin = 0.85;     // only while D_ref < margin D_max K
   // Terminal range control.
   double terminal_increment_max_fraction = 0.8;  // |c| <= fraction D_ref
-  double terminal_min_range_m = 5000.0;      // increment frozen closer than this to the aim point
+  double terminal_min_range_m = 5000.0;      // closer than this to the aim point the increment is zero
   int final_factor_samples = 20;             // scan of the final-drag factor between 1 and K
   double final_altitude_band_depth = 0.5;    // predicted TAEM altitude inside this depth of its band
   // Estimation of the sensed drag and L/D ratios.
@@ -101,7 +101,7 @@ void visit_tracker_params(Params& p, Visitor&& v) {
   v("modulation_lead_s", p.modulation_lead_s, U::kNone, 0.0, 10.0, "modulation roll-model lead");
   v("modulation_bound_margin", p.modulation_bound_margin, U::kNone, 0.0, 1.0, "modulation only below this share of D_max K");
   v("terminal_increment_max_fraction", p.terminal_increment_max_fraction, U::kNone, 0.0, 2.0, "terminal drag increment bound / D_ref");
-  v("terminal_min_range_m", p.terminal_min_range_m, U::kNone, 0.0, 1e5, "terminal increment frozen closer than this");
+  v("terminal_min_range_m", p.terminal_min_range_m, U::kNone, 0.0, 1e5, "terminal increment zero closer than this");
   v("final_factor_samples", p.final_factor_samples, U::kNone, 1, 1000, "final-drag factor scan samples");
   v("final_altitude_band_depth", p.final_altitude_band_depth, U::kNone, 0.0, 1.0, "TAEM altitude kept inside this band depth");
   v("ratio_time_constant_s", p.ratio_time_constant_s, U::kNone, 0.1, 1000.0, "drag and L/D ratio filter time constant");
