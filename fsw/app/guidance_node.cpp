@@ -4,6 +4,8 @@
 #include <time.h>
 
 #include <algorithm>
+#include <chrono>
+#include <thread>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -50,9 +52,15 @@ bool GuidanceNode::cycle(const nav_state_t& nav, guidance_cmd_t& cmd, guidance_s
   exec::NavInput in;
   in.tick = nav.tick;
   if (convert_(nav, in.state, convert_ctx_) != Status::kOk) {
-    in.state.t_s = std::nan("");  // rejected by the executive's validation: command held
+    in.state = RelativeState{};
+    in.state.t_s = nav.t_s;  // the tick/time windows still apply; the values are rejected: command held
+    in.values_valid = false;
   }
-  const exec::CycleOutput out = exec_.step(in);
+  exec::CycleOutput out = exec_.step(in);
+  while (out.awaiting_plan) {  // lockstep: the plan due now is late; wait for it
+    std::this_thread::sleep_for(std::chrono::microseconds(50));
+    out = exec_.resume();
+  }
   plan_adopted = out.plan_adopted;
   if (!out.emitted) return false;
   const exec::ExecCounters& c = exec_.counters();
@@ -74,7 +82,7 @@ bool GuidanceNode::cycle(const nav_state_t& nav, guidance_cmd_t& cmd, guidance_s
   status.jitter_us_last = jitter_us_last_;
   status.jitter_us_max = jitter_us_max_;
   status.cycle_overruns = cycle_overruns_;
-  status.plan_overruns = c.plan_overruns;
+  status.plan_overruns = c.plan_overruns;  // plans over their L / f budget (lockstep waits are not overruns)
   status.planner_runs = c.planner_runs;
   status.planner_ms_last = c.planner_ms_last;
   status.planner_ms_max = c.planner_ms_max;
@@ -281,6 +289,9 @@ void GuidanceNode::write_status_json(const std::string& path) const {
     << "  \"last_plan_status\": \"" << to_string(c.last_plan_status) << "\",\n"
     << "  \"planner_ms_max\": " << c.planner_ms_max << ",\n"
     << "  \"plan_overruns\": " << c.plan_overruns << ",\n"
+    << "  \"plan_waits\": " << c.plan_waits << ",\n"
+    << "  \"plan_wait_ms_max\": " << c.plan_wait_ms_max << ",\n"
+    << "  \"plan_wait_ms_total\": " << c.plan_wait_ms_total << ",\n"
     << "  \"plan_timeouts\": " << c.plan_timeouts << ",\n"
     << "  \"plans_adopted\": " << c.plans_adopted << ",\n"
     << "  \"cycle_us_max\": " << c.cycle_us_max << ",\n"
