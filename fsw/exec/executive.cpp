@@ -137,11 +137,11 @@ void Executive::request_plan(std::int64_t tick, const RelativeState& s) {
   last_request_t_s_ = s.t_s;
   ++counters_.plan_requests;
   if (cfg_.mode == PlanMode::kSynchronous) {
-    const std::int64_t t0 = now_ns();
+    const std::int64_t t0 = now_ns(), c0 = cycle_now_ns();
     pending_.id = req.id;
     pending_.status = planner_->compute(req.from, pending_.profile);
     const std::int64_t t1 = now_ns();
-    inline_plan_ns_ += t1 - t0;  // the planner's time, not the cycle's
+    inline_plan_ns_ += cycle_now_ns() - c0;  // the planner's time, not the cycle's
     pending_.compute_ms = static_cast<double>(t1 - t0) * 1e-6;
     pending_ready_ = true;
     in_flight_ = true;
@@ -255,8 +255,10 @@ CycleOutput Executive::held_output(const NavInput& nav, NavVerdict verdict) {
   return out;
 }
 
+std::int64_t Executive::cycle_now_ns() const { return cycle_clock_ns_ != nullptr ? cycle_clock_ns_() : now_ns(); }
+
 CycleOutput Executive::step(const NavInput& nav) {
-  const std::int64_t t_start = now_ns();
+  const std::int64_t t_start = cycle_now_ns();
   CycleOutput out;
   out.tick = nav.tick;
   out.t_s = nav.state.t_s;
@@ -308,7 +310,7 @@ CycleOutput Executive::step(const NavInput& nav) {
     awaiting_nav_ = nav;
     awaiting_out_ = out;
     wait_start_ns_ = now_ns();
-    cycle_ns_so_far_ = wait_start_ns_ - t_start;
+    cycle_ns_so_far_ = cycle_now_ns() - t_start;
     ++counters_.plan_waits;
     waits_started_.fetch_add(1, std::memory_order_acq_rel);
     CycleOutput wait;
@@ -323,7 +325,8 @@ CycleOutput Executive::step(const NavInput& nav) {
 CycleOutput Executive::resume() {
   CycleOutput out;
   if (!awaiting_) return out;
-  const std::int64_t t_start = now_ns();
+  const std::int64_t t_start = cycle_now_ns();
+  const std::int64_t wall_now = now_ns();
   CycleOutput cycle = awaiting_out_;
   if (!try_adopt(awaiting_nav_.tick, awaiting_nav_.state.t_s, cycle)) {
     out.tick = awaiting_nav_.tick;
@@ -332,7 +335,7 @@ CycleOutput Executive::resume() {
     return out;
   }
   awaiting_ = false;
-  counters_.plan_wait_ms_last = static_cast<double>(t_start - wait_start_ns_) * 1e-6;
+  counters_.plan_wait_ms_last = static_cast<double>(wall_now - wait_start_ns_) * 1e-6;
   counters_.plan_wait_ms_total += counters_.plan_wait_ms_last;
   if (counters_.plan_wait_ms_last > counters_.plan_wait_ms_max) counters_.plan_wait_ms_max = counters_.plan_wait_ms_last;
   // The cycle's own time: before the wait plus from here on (the wait itself is excluded).
@@ -401,7 +404,7 @@ CycleOutput Executive::finish_cycle(const NavInput& nav, CycleOutput& out, std::
 }
 
 void Executive::finish_timing(std::int64_t t_start_ns) {
-  counters_.cycle_us_last = static_cast<double>(now_ns() - t_start_ns - inline_plan_ns_) * 1e-3;
+  counters_.cycle_us_last = static_cast<double>(cycle_now_ns() - t_start_ns - inline_plan_ns_) * 1e-3;
   inline_plan_ns_ = 0;
   if (counters_.cycle_us_last > counters_.cycle_us_max) counters_.cycle_us_max = counters_.cycle_us_last;
 }

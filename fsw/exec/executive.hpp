@@ -166,6 +166,10 @@ class Executive {
   Status init(const ExecConfig& cfg, PlanComputer& planner, CommandLaw& law);
   /// Stops and joins the worker thread.
   void shutdown();
+  /// Clock of the cycle-time figures [ns] (start-up): steady wall time by default; the process
+  /// adapter passes its thread's CPU-time clock, so that cycle_us is the cycle's own compute
+  /// time and not the time the OS gave other threads while the cycle ran.
+  void set_cycle_clock(std::int64_t (*clock_ns)()) { cycle_clock_ns_ = clock_ns; }
 
   /// One cycle on a navigation sample. In lockstep, when the plan due at this tick is not
   /// ready, returns with awaiting_plan set and nothing emitted: the caller keeps its I/O
@@ -213,6 +217,7 @@ class Executive {
   void request_plan(std::int64_t tick, const RelativeState& s);
   bool pop_expected();
   void finish_timing(std::int64_t t_start_ns);
+  std::int64_t cycle_now_ns() const;
   void count_skipped(std::int64_t tick);
   double dt_s() const { return 1.0 / cfg_.gnc_rate_hz; }
 
@@ -262,7 +267,8 @@ class Executive {
   NavInput awaiting_nav_;
   CycleOutput awaiting_out_;
   std::int64_t wait_start_ns_ = 0;
-  std::int64_t cycle_ns_so_far_ = 0;
+  std::int64_t cycle_ns_so_far_ = 0;  // cycle clock
+  std::int64_t (*cycle_clock_ns_)() = nullptr;
   std::int64_t inline_plan_ns_ = 0;  // synchronous plan computed inside this cycle (excluded)
   CycleOutput last_valid_;
   double last_drag_err_ = 0.0;
