@@ -53,11 +53,13 @@ NavVerdict Executive::validate(const NavInput& nav) const {
   const double dt = dt_s();
   // Tick and time: ticks count from 0 at the entry interface and t_s = tick / f, so a sample
   // whose time does not match its tick carries a corrupted tick or time; neither can be trusted.
-  if (nav.tick < 0 || !std::isfinite(nav.state.t_s)) return NavVerdict::kRejectedTick;
-  if (std::fabs(nav.state.t_s - static_cast<double>(nav.tick) * dt) > w.time_tolerance_ticks * dt) {
+  if (nav.tick < 0) return NavVerdict::kRejectedTick;
+  // The tick already accepted: nothing new, whatever it carries (the adapter answers again).
+  if (have_last_nav_ && nav.tick == last_tick_) return NavVerdict::kDuplicate;
+  if (!std::isfinite(nav.state.t_s) ||
+      std::fabs(nav.state.t_s - static_cast<double>(nav.tick) * dt) > w.time_tolerance_ticks * dt) {
     return NavVerdict::kRejectedTick;
   }
-  if (have_last_nav_ && nav.tick == last_tick_) return NavVerdict::kDuplicate;
   if (!tick_in_window(nav.tick)) return NavVerdict::kRejectedTick;
   // Values: finite and inside the absolute windows.
   const RelativeState& s = nav.state;
