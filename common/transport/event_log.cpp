@@ -6,11 +6,15 @@
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
+#include <zlib.h>
+
+#include <reentry/log_seal_t.hpp>
 
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <vector>
 
 namespace reentry::transport {
 namespace {
@@ -62,7 +66,34 @@ bool plausible_event(const std::uint8_t* f, std::int64_t size, std::int64_t pos,
   return true;
 }
 
+void put_be64(std::uint8_t* p, std::int64_t v) {
+  for (int i = 7; i >= 0; --i, v = static_cast<std::int64_t>(static_cast<std::uint64_t>(v) >> 8)) {
+    p[i] = static_cast<std::uint8_t>(v & 0xff);
+  }
+}
+
+void put_be32(std::uint8_t* p, std::int32_t v) {
+  const auto u = static_cast<std::uint32_t>(v);
+  p[0] = static_cast<std::uint8_t>(u >> 24), p[1] = static_cast<std::uint8_t>(u >> 16);
+  p[2] = static_cast<std::uint8_t>(u >> 8), p[3] = static_cast<std::uint8_t>(u);
+}
+
 }  // namespace
+
+void LogDigest::add(std::int64_t eventnum, std::int64_t timestamp_us, const char* channel, int channel_len,
+                    const void* data, int size) {
+  std::uint8_t head[24];
+  put_be64(head, eventnum);
+  put_be64(head + 8, timestamp_us);
+  put_be32(head + 16, channel_len);
+  put_be32(head + 20, size);
+  uLong c = crc32(crc_, head, sizeof head);
+  c = crc32(c, reinterpret_cast<const Bytef*>(channel), static_cast<uInt>(channel_len));
+  if (size > 0) c = crc32(c, static_cast<const Bytef*>(data), static_cast<uInt>(size));
+  crc_ = static_cast<std::uint32_t>(c);
+  ++events_;
+  bytes_ += channel_len + size;
+}
 
 std::int64_t wall_clock_us() {
   timespec ts{};
@@ -86,6 +117,7 @@ bool EventLogWriter::open(const std::string& path, std::size_t ring_bytes, WhenF
     file_.reset();
     return false;
   }
+  digest_ = LogDigest{};
   ring_.reset(new std::uint8_t[cap]);
   std::memset(ring_.get(), 0, cap);  // touch the pages now, not in the first cycles
   capacity_ = cap;
@@ -98,8 +130,11 @@ bool EventLogWriter::open(const std::string& path, std::size_t ring_bytes, WhenF
 }
 
 bool EventLogWriter::record(const char* channel, const void* data, int len) {
+  return record_at(channel, data, len, wall_clock_us());
+}
+
+bool EventLogWriter::record_at(const char* channel, const void* data, int len, std::int64_t stamp) {
   if (!is_open() || channel == nullptr || len < 0) return false;
-  const std::int64_t stamp = wall_clock_us();
   const std::size_t ch_len = strnlen(channel, 256);
   const std::uint64_t need = round_up8(sizeof(RecordHeader) + ch_len + static_cast<std::uint64_t>(len));
   if (ch_len == 0 || ch_len > 255 || need > capacity_ / 4) {
@@ -161,7 +196,26 @@ void EventLogWriter::writer_loop() {
         if (std::fflush(file_->getFilePtr()) != 0) io_error_.store(true, std::memory_order_relaxed);
         unflushed = false;
       }
-      if (stop_.load(std::memory_order_acquire) && head_.load(std::memory_order_acquire) == tail) break;
+      if (stop_.load(std::memory_order_acquire) && head_.load(std::memory_order_acquire) == tail) {
+        // Closing: the seal covers every event written.
+        reentry::log_seal_t seal{};
+        seal.utime = wall_clock_us();
+        seal.events = digest_.events();
+        seal.bytes = digest_.bytes();
+        seal.crc32 = digest_.crc();
+        seal.dropped = dropped_.load(std::memory_order_relaxed);
+        std::vector<std::uint8_t> buf(static_cast<std::size_t>(seal.getEncodedSize()));
+        seal.encode(buf.data(), 0, static_cast<int>(buf.size()));
+        ev.eventnum = 0;
+        ev.timestamp = seal.utime;
+        ev.channel = kSealChannel;
+        ev.datalen = static_cast<std::int32_t>(buf.size());
+        ev.data = buf.data();
+        if (file_->writeEvent(&ev) != 0 || std::fflush(file_->getFilePtr()) != 0) {
+          io_error_.store(true, std::memory_order_relaxed);
+        }
+        break;
+      }
       std::this_thread::sleep_for(std::chrono::microseconds(500));
       continue;
     }
@@ -183,6 +237,7 @@ void EventLogWriter::writer_loop() {
       ev.datalen = static_cast<std::int32_t>(h.data_len);
       ev.data = const_cast<std::uint8_t*>(ring_.get() + off + sizeof h + h.channel_len);
       if (file_->writeEvent(&ev) != 0) io_error_.store(true, std::memory_order_relaxed);
+      digest_.add(digest_.events(), ev.timestamp, ch, h.channel_len, ev.data, ev.datalen);
       written_.fetch_add(1, std::memory_order_relaxed);
       tail += h.bytes;
       tail_.store(tail, std::memory_order_release);  // room for the producer as soon as possible
@@ -204,6 +259,7 @@ std::string LogFraming::describe() const {
   if (!error.empty()) return error;
   std::string s;
   if (skipped_bytes > 0) s += std::to_string(skipped_bytes) + " bytes of garbage between events were skipped; ";
+  if (!seal_problem.empty()) s += seal_problem + "; ";
   if (eventnum_gaps > 0) {
     s += std::to_string(eventnum_gaps) + " jump(s) in the event numbers: events are missing from the middle; ";
   }
@@ -252,6 +308,10 @@ LogFraming read_event_log(const std::string& path, const std::function<bool(cons
   std::int64_t last_eventnum = 0;
   bool have_eventnum = false;
   bool stopped = false;
+  LogDigest digest;
+  std::int64_t seal_at_event = -1;
+  reentry::log_seal_t seal{};
+  bool seal_decodes = false;
   for (;;) {
     std::int64_t chan_len = 0, data_len = 0;
     if (!plausible_event(f, size, pos, chan_len, data_len)) {
@@ -281,12 +341,35 @@ LogFraming read_event_log(const std::string& path, const std::function<bool(cons
     pos += kEventHeaderBytes + chan_len + data_len;
     fr.bytes_consumed = pos;
     ++fr.events;
+    const bool is_seal = ev.channel_len == static_cast<int>(std::strlen(kSealChannel)) &&
+                         std::memcmp(ev.channel, kSealChannel, static_cast<std::size_t>(ev.channel_len)) == 0;
+    if (is_seal) {
+      if (seal_at_event >= 0 && fr.seal_problem.empty()) fr.seal_problem = "more than one seal";
+      seal_at_event = fr.events - 1;
+      seal_decodes = seal.decode(ev.data, 0, ev.size) == ev.size;
+      if (seal_decodes && (seal.events != digest.events() || seal.bytes != digest.bytes() ||
+                           seal.crc32 != static_cast<std::int64_t>(digest.crc()))) {
+        fr.seal_problem = "the seal does not match the events before it (" + std::to_string(digest.events()) +
+                          " events read, " + std::to_string(seal.events) + " sealed; CRC " +
+                          (seal.crc32 == static_cast<std::int64_t>(digest.crc()) ? "equal" : "differs") +
+                          "): bytes were changed, added or removed";
+      } else if (!seal_decodes) {
+        fr.seal_problem = "the seal does not decode";
+      }
+      fr.seal_dropped = seal_decodes ? seal.dropped : 0;
+    } else {
+      digest.add(ev.eventnum, ev.timestamp_us, ev.channel, ev.channel_len, ev.data, ev.size);
+    }
     if (!on_event(ev)) {
       stopped = true;
       break;
     }
   }
   fr.truncated_tail = !stopped && fr.bytes_consumed < size;
+  if (seal_at_event >= 0 && !stopped) {
+    fr.sealed = seal_at_event == fr.events - 1;
+    if (!fr.sealed && fr.seal_problem.empty()) fr.seal_problem = "events follow the seal";
+  }
   if (fr.events == 0) fr.error = "'" + path + "' contains no readable LCM event";
   ::munmap(map, static_cast<std::size_t>(size));
   return fr;

@@ -10,10 +10,15 @@
 // is dropped and counted (realtime: the cycle never waits); a log with drops is named as
 // incomplete by its readers through the counters the processes publish.
 //
+// Every log the writer closes ends with a seal (log_seal_t on channel LOG_SEAL): the event
+// count and a CRC-32 (zlib) over every event before it as stored. A log is then verifiable
+// byte for byte; one without a seal was not closed (its process was killed, or another tool
+// such as lcm-logger wrote it).
+//
 // read_event_log: reads a log without trusting it (LCM 1.3.1's reader trusts the length
 // fields; a huge one crashes it): every header is checked against the file before use,
-// garbage between events is skipped and counted, a truncated tail and jumps in the event
-// numbers (events missing from the middle) are reported.
+// garbage between events is skipped and counted, a truncated tail, jumps in the event numbers
+// (events missing from the middle) and a seal that does not match are reported.
 #pragma once
 
 #include <atomic>
@@ -28,6 +33,24 @@ class LogFile;
 }
 
 namespace reentry::transport {
+
+/// Channel of the seal event.
+inline constexpr const char* kSealChannel = "LOG_SEAL";
+
+/// CRC-32 of a log's events as stored (from the event number to the last data byte).
+class LogDigest {
+ public:
+  void add(std::int64_t eventnum, std::int64_t timestamp_us, const char* channel, int channel_len, const void* data,
+           int size);
+  std::uint32_t crc() const { return crc_; }
+  std::int64_t events() const { return events_; }
+  std::int64_t bytes() const { return bytes_; }
+
+ private:
+  std::uint32_t crc_ = 0;
+  std::int64_t events_ = 0;
+  std::int64_t bytes_ = 0;
+};
 
 class EventLogWriter {
  public:
@@ -47,8 +70,10 @@ class EventLogWriter {
   /// lcm-logger stamps what it receives. Copies into the ring; never allocates, never does I/O.
   /// kWait waits for room at most max_wait_s, then drops. False when the record was dropped.
   bool record(const char* channel, const void* data, int len);
+  /// The same with a given time stamp (tools that copy or merge logs).
+  bool record_at(const char* channel, const void* data, int len, std::int64_t timestamp_us);
 
-  /// Drains the ring, flushes and closes the file, joins the writer thread.
+  /// Drains the ring, writes the seal, flushes and closes the file, joins the writer thread.
   void close();
 
   std::int64_t recorded() const { return recorded_.load(std::memory_order_relaxed); }
@@ -72,6 +97,7 @@ class EventLogWriter {
   WhenFull when_full_ = WhenFull::kWait;
   std::unique_ptr<lcm::LogFile> file_;
   std::thread writer_;
+  LogDigest digest_;  // writer thread
 };
 
 /// One event of a log; pointers into the mapped file, valid during the callback.
@@ -93,7 +119,12 @@ struct LogFraming {
   std::int64_t eventnum_gaps = 0;   // event numbers not following each other: events missing
   bool truncated_tail = false;      // trailing bytes that do not form a whole event
   std::string error;                // non-empty: the file cannot be read as an LCM log at all
-  bool malformed() const { return !error.empty() || skipped_bytes > 0 || truncated_tail || eventnum_gaps > 0; }
+  bool sealed = false;              // the last event is a seal
+  std::string seal_problem;         // non-empty: a seal that does not match, or not at the end
+  std::int64_t seal_dropped = 0;    // records the writer reported dropped
+  bool malformed() const {
+    return !error.empty() || skipped_bytes > 0 || truncated_tail || eventnum_gaps > 0 || !seal_problem.empty();
+  }
   std::string describe() const;
 };
 

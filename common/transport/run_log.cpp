@@ -100,6 +100,14 @@ std::string RunCompleteness::problem() const {
   if (nav_after_end > 0 || end_tick < last_tick) {
     return "END_OF_RUN at tick " + s(end_tick) + " but NAV_STATE up to tick " + s(last_tick);
   }
+  if (end_tick > last_tick + 1) {
+    return "END_OF_RUN at tick " + s(end_tick) + " but the NAV_STATE ticks end at " + s(last_tick) +
+           ": the last samples are missing";
+  }
+  if (end_tick == last_tick && !link_loss_end()) {
+    return "END_OF_RUN (event " + std::string(end_event_name(end_event)) + ") at the tick of the last NAV_STATE " +
+           s(last_tick) + ": a normal end comes one tick after the last sample";
+  }
   return {};
 }
 

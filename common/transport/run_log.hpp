@@ -1,7 +1,9 @@
 // Is a run log complete? One rule for the replay, tools/loginfo and tools/sil: a lockstep run
 // log holds every NAV_STATE tick from 0 (the entry interface) to the last, a GUIDANCE_CMD
-// answering each, and RUN_CONTROL END_OF_RUN after the last sample; every event of those
-// channels decodes, and a tick logged twice carries the same bytes (a republished sample).
+// answering each, and RUN_CONTROL END_OF_RUN right after the last sample (the simulator ends
+// at tick k without publishing sample k; a link-loss end is at the unanswered last sample);
+// every event of those channels decodes, and a tick logged twice carries the same bytes (a
+// republished sample). (Byte integrity is the seal's business: event_log.hpp.)
 // Ground-side code (containers allowed).
 #pragma once
 
@@ -33,7 +35,11 @@ struct RunCompleteness {
   bool damaged() const { return undecodable > 0 || conflicting_navs > 0 || nav_after_end > 0 || (end_of_run && end_tick < last_tick); }
   /// Something missing (ticks, answers, the end).
   bool incomplete() const {
-    return nav_ticks == 0 || first_tick != 0 || missing_ticks > 0 || unanswered_ticks > 0 || !end_of_run;
+    return nav_ticks == 0 || first_tick != 0 || missing_ticks > 0 || unanswered_ticks > 0 || !end_of_run ||
+           end_tick > last_tick + 1 || (end_tick == last_tick && !link_loss_end());
+  }
+  bool link_loss_end() const {
+    return end_event == run_control_t::EVENT_LINK_LOSS || end_event == run_control_t::EVENT_ABORT;
   }
   bool complete() const { return !damaged() && !incomplete(); }
   /// The first reason the log is not complete (empty when it is).

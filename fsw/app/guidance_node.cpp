@@ -333,7 +333,8 @@ int GuidanceNode::run_live(transport::UdpmSocket& net, RunMode mode, const LiveO
   }
 }
 
-int GuidanceNode::run_replay(const std::string& log_path, bool compare, const std::string& out_log) {
+int GuidanceNode::run_replay(const std::string& log_path, bool compare, const std::string& out_log,
+                             bool allow_unsealed) {
   mode_ = RunMode::kReplay;
   net_ = nullptr;
   // Ground-side replay: containers are fine here (not the flight loop).
@@ -361,6 +362,15 @@ int GuidanceNode::run_replay(const std::string& log_path, bool compare, const st
   }
   if (run.incomplete()) {
     std::printf("incomplete log: %s; replay needs every tick, its command and END_OF_RUN\n", run.problem().c_str());
+    return kExitLogIncomplete;
+  }
+  if (!fr.sealed && !allow_unsealed) {
+    std::printf("incomplete log: no seal at the end (its writer did not close it, or it was cut at an event "
+                "boundary, or another tool wrote it): nothing proves it whole; --unsealed replays it anyway\n");
+    return kExitLogIncomplete;
+  }
+  if (fr.seal_dropped > 0) {
+    std::printf("incomplete log: its writer dropped %lld records\n", static_cast<long long>(fr.seal_dropped));
     return kExitLogIncomplete;
   }
 

@@ -52,11 +52,12 @@ class GuidanceNode {
   /// the safe command is then held and published with the link-loss flag before returning.
   int run_live(transport::UdpmSocket& net, RunMode mode, const LiveOptions& options);
 
-  /// Replay a log: checks its framing and completeness (every tick from the first, a
-  /// GUIDANCE_CMD for each, END_OF_RUN at the end), then runs every NAV_STATE through the
-  /// executive and compares each command with the logged one. Prints `identical`, the first
-  /// differing tick and field, or why the log cannot be replayed. out_log: the re-run's log.
-  int run_replay(const std::string& log_path, bool compare, const std::string& out_log);
+  /// Replay a log: checks its seal (unless allow_unsealed), framing and completeness (every
+  /// tick from 0, a GUIDANCE_CMD for each, END_OF_RUN right after the last sample), then runs
+  /// every NAV_STATE through the executive and compares each command with the logged one.
+  /// Prints `identical`, the first differing tick and field, or why the log cannot be
+  /// replayed. out_log: the re-run's log (navs, commands, status, plans, END_OF_RUN).
+  int run_replay(const std::string& log_path, bool compare, const std::string& out_log, bool allow_unsealed = false);
 
   /// One received datagram (the live loop, and the in-process fuzz test). May publish.
   void on_datagram(const char* channel, const std::uint8_t* payload, int len);

@@ -30,12 +30,13 @@ Status convert_nav(const reentry::nav_state_t& nav, RelativeState& out, void*) {
 int main(int argc, char** argv) {
   CLI::App cli{"reentry guidance process"};
   std::string mission_arg, mode = "lockstep", replay, replay_log, status_json, log_path;
-  bool compare = false;
+  bool compare = false, unsealed = false;
   app::LiveOptions live;
   cli.add_option("--mission", mission_arg, "mission name or TOML file")->required();
   cli.add_option("--mode", mode, "lockstep or realtime")->check(CLI::IsMember({"lockstep", "realtime"}));
   cli.add_option("--replay", replay, "replay the NAV_STATE messages of an LCM log");
   cli.add_flag("--compare", compare, "with --replay: compare with the logged GUIDANCE_CMD");
+  cli.add_flag("--unsealed", unsealed, "with --replay: accept a log without a seal (not written by our tools)");
   cli.add_option("--replay-log", replay_log, "with --replay: write the re-run (navs, commands, status) to this log");
   cli.add_option("--status-json", status_json, "write the executive counters and the exit status here at exit");
   cli.add_option("--log", log_path, "record every message received and sent in this LCM log");
@@ -68,7 +69,7 @@ int main(int argc, char** argv) {
   int rc = app::kExitOk;
   auto net = std::make_unique<reentry::transport::UdpmSocket>();  // outlives the node's use of it
   if (!replay.empty()) {
-    rc = node->run_replay(replay, compare, replay_log);
+    rc = node->run_replay(replay, compare, replay_log, unsealed);
   } else {
     const app::RunMode run_mode = mode == "realtime" ? app::RunMode::kRealtime : app::RunMode::kLockstep;
     reentry::transport::UdpmUrl url;

@@ -189,6 +189,10 @@ TEST(EventLog, WriterRecordsEveryMessageInOrderThroughRingWraps) {
   EXPECT_EQ(w.written(), n);
   int seen = 0;
   const LogFraming fr = read_event_log(path, [&](const LogEventView& ev) {
+    if (seen == n) {
+      EXPECT_EQ(std::string(ev.channel, ev.channel_len), kSealChannel);  // the seal closes the log
+      return true;
+    }
     EXPECT_EQ(ev.size, 1 + (seen * 7919) % 10000);
     EXPECT_EQ(std::string(ev.channel, ev.channel_len), seen % 2 ? "A" : "CHANNEL_B");
     EXPECT_EQ(ev.data[0], static_cast<std::uint8_t>(seen));
@@ -198,6 +202,8 @@ TEST(EventLog, WriterRecordsEveryMessageInOrderThroughRingWraps) {
   });
   EXPECT_EQ(seen, n);
   EXPECT_FALSE(fr.malformed()) << fr.describe();
+  EXPECT_TRUE(fr.sealed);
+  EXPECT_EQ(fr.seal_dropped, 0);
   std::remove(path.c_str());
 }
 
@@ -213,6 +219,9 @@ TEST(EventLog, DropPolicyCountsInsteadOfWaiting) {
   EXPECT_EQ(kept + w.dropped(), 2000);
   EXPECT_GT(w.dropped(), 0);
   EXPECT_EQ(w.written(), kept);
+  const LogFraming fr = read_event_log(path, [](const LogEventView&) { return true; });
+  EXPECT_TRUE(fr.sealed);
+  EXPECT_EQ(fr.seal_dropped, w.dropped());  // the seal says the log is incomplete
   std::remove(path.c_str());
 }
 
@@ -268,12 +277,17 @@ TEST(EventLog, DamagedLogsAreReportedNeverTrusted) {
   const LogFraming rm = read_blob(removed);
   EXPECT_EQ(rm.eventnum_gaps, 1);
   EXPECT_TRUE(rm.malformed());
-  // Random bit flips: never a crash (ASan), whatever is reported.
+  EXPECT_NE(rm.seal_problem, "");
+  EXPECT_TRUE(read_blob(good).sealed);
+  EXPECT_FALSE(read_blob(good).malformed());
+  // Random bit flips: never a crash (ASan), and never a sealed log that reads as intact: the
+  // seal's CRC covers every byte before it (a flip in the seal itself breaks or removes it).
   std::mt19937 rng(7);
   for (int i = 0; i < 300; ++i) {
     std::vector<char> b = good;
-    for (int f = 0; f < 4; ++f) b[rng() % b.size()] ^= static_cast<char>(1 << (rng() % 8));
-    read_blob(b);
+    for (int f = 0; f < 1 + static_cast<int>(rng() % 4); ++f) b[rng() % b.size()] ^= static_cast<char>(1 << (rng() % 8));
+    const LogFraming fr = read_blob(b);
+    EXPECT_TRUE(fr.malformed() || !fr.sealed) << "flips " << i << " went unnoticed";
   }
   EXPECT_NE(read_blob({}).error, "");
   EXPECT_NE(read_blob({'a', 'b'}).error, "");

@@ -74,12 +74,13 @@ int main(int argc, char** argv) {
   namespace app = reentry::fsw::app;
   CLI::App cli{"SIL test double of the guidance process"};
   std::string mission, mode = "lockstep", replay, replay_log, status_json, log_path;
-  bool compare = false;
+  bool compare = false, unsealed = false;
   app::LiveOptions live;
   cli.add_option("--mission", mission);
   cli.add_option("--mode", mode);
   cli.add_option("--replay", replay);
   cli.add_flag("--compare", compare);
+  cli.add_flag("--unsealed", unsealed);
   cli.add_option("--replay-log", replay_log);
   cli.add_option("--status-json", status_json);
   cli.add_option("--log", log_path);
@@ -103,7 +104,7 @@ int main(int argc, char** argv) {
   int rc = 0;
   auto net = std::make_unique<reentry::transport::UdpmSocket>();  // outlives the node's use of it
   if (!replay.empty()) {
-    rc = node->run_replay(replay, compare, replay_log);
+    rc = node->run_replay(replay, compare, replay_log, unsealed);
   } else {
     const app::RunMode run_mode = mode == "realtime" ? app::RunMode::kRealtime : app::RunMode::kLockstep;
     reentry::transport::UdpmUrl url;

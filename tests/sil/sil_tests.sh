@@ -125,21 +125,22 @@ PY
     [[ $rc -ne 0 ]] || fail "altered log replayed without a difference"
     [[ "$out" == "differs at tick $tick "* ]] || fail "wrong tick reported: $out"
     # A log cut in the middle of an event, and one cut at an event boundary before END_OF_RUN.
-    size=$(stat -c %s "$dir/run.lcm")
-    head -c $(( size * 2 / 3 + 5 )) "$dir/run.lcm" > "$dir/cut.lcm"
+    /usr/bin/python3 - "$dir/run.lcm" "$dir/cut.lcm" "$dir/no_end.lcm" <<'PY' || fail "could not cut the log"
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+pos, ends, end_of_run = 0, [], None
+while pos + 28 <= len(data):
+    cl, dl = struct.unpack(">ii", data[pos + 20:pos + 28])
+    if end_of_run is None and data[pos + 28:pos + 28 + cl] == b"RUN_CONTROL": end_of_run = pos
+    pos += 28 + cl + dl
+    ends.append(pos)
+mid = ends[len(ends) * 2 // 3] + 17  # 17 bytes into an event: inside its header
+open(sys.argv[2], "wb").write(data[:mid])
+open(sys.argv[3], "wb").write(data[:end_of_run])
+PY
     out=$("$repo/tools/replay" "$dir/cut.lcm"); rc=$?
     echo "$out"
     [[ $rc -eq 6 && "$out" == "damaged log"* ]] || fail "truncated log: exit $rc, $out"
-    /usr/bin/python3 - "$dir/run.lcm" "$dir/no_end.lcm" <<'PY' || fail "could not cut the log"
-import struct, sys
-data = open(sys.argv[1], "rb").read()
-pos, keep = 0, 0
-while pos + 28 <= len(data):
-    cl, dl = struct.unpack(">ii", data[pos + 20:pos + 28])
-    if data[pos + 28:pos + 28 + cl] == b"RUN_CONTROL": break
-    pos += 28 + cl + dl
-open(sys.argv[2], "wb").write(data[:pos])
-PY
     out=$("$repo/tools/replay" "$dir/no_end.lcm"); rc=$?
     echo "$out"
     [[ $rc -eq 5 && "$out" == "incomplete log"*END_OF_RUN* ]] || fail "log without END_OF_RUN: exit $rc, $out"

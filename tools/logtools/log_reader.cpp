@@ -45,6 +45,7 @@ std::string LogScan::describe() const {
   f.eventnum_gaps = eventnum_gaps;
   f.truncated_tail = truncated_tail;
   f.error = error;
+  f.seal_problem = seal_problem;
   return f.describe();
 }
 
@@ -65,6 +66,9 @@ LogScan read_log(const std::string& path, const std::function<void(const LogEven
   scan.eventnum_gaps = f.eventnum_gaps;
   scan.truncated_tail = f.truncated_tail;
   scan.error = f.error;
+  scan.sealed = f.sealed;
+  scan.seal_problem = f.seal_problem;
+  scan.seal_dropped = f.seal_dropped;
   return scan;
 }
 

@@ -47,7 +47,12 @@ struct LogScan {
   int64_t eventnum_gaps = 0;     // jumps in the event numbers: events missing from the middle
   bool truncated_tail = false;   // trailing bytes that do not form a whole event
   std::string error;             // non-empty: the file cannot be read as an LCM log at all
-  bool malformed() const { return !error.empty() || skipped_bytes > 0 || truncated_tail || eventnum_gaps > 0; }
+  bool sealed = false;           // closed by our writer with a matching seal (LOG_SEAL)
+  std::string seal_problem;      // a seal that does not match its events
+  int64_t seal_dropped = 0;      // records its writer dropped
+  bool malformed() const {
+    return !error.empty() || skipped_bytes > 0 || truncated_tail || eventnum_gaps > 0 || !seal_problem.empty();
+  }
   std::string describe() const;
 };
 

@@ -4,10 +4,9 @@
 // the messages each process sent: tools/sil merges sim.lcm:NAV_STATE,TRUTH,RUN_CONTROL and
 // fsw.lcm:GUIDANCE_CMD,GUIDANCE_STATUS,PLAN into run.lcm. Events are ordered by their time
 // stamps (one wall clock on one machine: a command is stamped after the sample it answers),
-// ties in input order; event numbers are renumbered. A damaged input is merged as far as it
-// reads and reported (exit 3); the output is written with lcm::LogFile.
-#include <lcm/lcm-cpp.hpp>
-
+// ties in input order, renumbered, and the output is sealed (common/transport/event_log.hpp).
+// An input that is damaged, not sealed (its process did not close it) or reports dropped
+// records is merged as far as it reads and reported: exit 3. Exit 4: the output cannot be written.
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
@@ -21,7 +20,6 @@ namespace {
 
 struct Event {
   std::int64_t timestamp_us;
-  int input;
   std::int64_t order;
   std::string channel;
   std::vector<std::uint8_t> data;
@@ -30,6 +28,7 @@ struct Event {
 }  // namespace
 
 int main(int argc, char** argv) {
+  namespace tr = reentry::transport;
   if (argc < 3) {
     std::fprintf(stderr, "usage: reentry_logmerge OUT IN[:CH1,CH2,...] [IN[:...] ...]\n");
     return 2;
@@ -42,7 +41,7 @@ int main(int argc, char** argv) {
     const std::size_t colon = arg.rfind(':');
     if (colon != std::string::npos) {
       path = arg.substr(0, colon);
-      std::string list = arg.substr(colon + 1);
+      const std::string list = arg.substr(colon + 1);
       for (std::size_t pos = 0; pos <= list.size();) {
         std::size_t comma = list.find(',', pos);
         if (comma == std::string::npos) comma = list.size();
@@ -51,40 +50,44 @@ int main(int argc, char** argv) {
       }
     }
     std::int64_t taken = 0;
-    const reentry::transport::LogFraming fr =
-        reentry::transport::read_event_log(path, [&](const reentry::transport::LogEventView& ev) {
-          std::string ch(ev.channel, static_cast<std::size_t>(ev.channel_len));
-          if (!channels.empty() && channels.count(ch) == 0) return true;
-          events.push_back(Event{ev.timestamp_us, i, static_cast<std::int64_t>(events.size()), std::move(ch),
-                                 std::vector<std::uint8_t>(ev.data, ev.data + ev.size)});
-          ++taken;
-          return true;
-        });
-    if (fr.malformed()) {
-      std::fprintf(stderr, "logmerge: error: damaged input '%s': %s (%lld events taken)\n", path.c_str(),
-                   fr.describe().c_str(), static_cast<long long>(taken));
+    const tr::LogFraming fr = tr::read_event_log(path, [&](const tr::LogEventView& ev) {
+      std::string ch(ev.channel, static_cast<std::size_t>(ev.channel_len));
+      if (ch == tr::kSealChannel || (!channels.empty() && channels.count(ch) == 0)) return true;
+      events.push_back(Event{ev.timestamp_us, static_cast<std::int64_t>(events.size()), std::move(ch),
+                             std::vector<std::uint8_t>(ev.data, ev.data + ev.size)});
+      ++taken;
+      return true;
+    });
+    std::string problem;
+    if (fr.malformed()) problem = "damaged: " + fr.describe();
+    else if (!fr.sealed) problem = "not sealed: its writer did not close it (killed?); it may end early";
+    else if (fr.seal_dropped > 0) problem = "its writer dropped " + std::to_string(fr.seal_dropped) + " records";
+    if (!problem.empty()) {
+      std::fprintf(stderr, "logmerge: error: input '%s' %s (%lld events taken)\n", path.c_str(), problem.c_str(),
+                   static_cast<long long>(taken));
       damaged = true;
     }
   }
   std::stable_sort(events.begin(), events.end(), [](const Event& a, const Event& b) {
     return a.timestamp_us != b.timestamp_us ? a.timestamp_us < b.timestamp_us : a.order < b.order;
   });
-  lcm::LogFile out(argv[1], "w");
-  if (!out.good()) {
-    std::fprintf(stderr, "logmerge: error: cannot create '%s': %s\n", argv[1], std::strerror(errno));
+  tr::EventLogWriter out;
+  std::string err;
+  if (!out.open(argv[1], 16u << 20, tr::EventLogWriter::WhenFull::kWait, err)) {
+    std::fprintf(stderr, "logmerge: error: %s\n", err.c_str());
     return 4;
   }
-  for (Event& e : events) {
-    lcm::LogEvent ev{};
-    ev.timestamp = e.timestamp_us;
-    ev.channel = e.channel;
-    ev.datalen = static_cast<std::int32_t>(e.data.size());
-    ev.data = e.data.data();
-    if (out.writeEvent(&ev) != 0) {
-      std::fprintf(stderr, "logmerge: error: writing '%s' failed\n", argv[1]);
+  for (const Event& e : events) {
+    if (!out.record_at(e.channel.c_str(), e.data.data(), static_cast<int>(e.data.size()), e.timestamp_us)) {
+      std::fprintf(stderr, "logmerge: error: an event on '%s' could not be written\n", e.channel.c_str());
       return 4;
     }
   }
-  std::printf("logmerge: %zu events -> %s\n", events.size(), argv[1]);
+  out.close();
+  if (out.io_error()) {
+    std::fprintf(stderr, "logmerge: error: writing '%s' failed\n", argv[1]);
+    return 4;
+  }
+  std::printf("logmerge: %zu events -> %s (sealed)\n", events.size(), argv[1]);
   return damaged ? 3 : 0;
 }
