@@ -117,6 +117,10 @@ bool EventLogWriter::open(const std::string& path, std::size_t ring_bytes, WhenF
     file_.reset();
     return false;
   }
+  // The FILE buffer is ours, set before the first write: glibc would allocate it lazily in the
+  // writer thread after start-up.
+  io_buffer_.reset(new char[kIoBufferBytes]);
+  std::setvbuf(file_->getFilePtr(), io_buffer_.get(), _IOFBF, kIoBufferBytes);
   digest_ = LogDigest{};
   ring_.reset(new std::uint8_t[cap]);
   std::memset(ring_.get(), 0, cap);  // touch the pages now, not in the first cycles
@@ -251,6 +255,7 @@ void EventLogWriter::close() {
   stop_.store(true, std::memory_order_release);
   if (writer_.joinable()) writer_.join();
   file_.reset();  // closes the file
+  io_buffer_.reset();
   ring_.reset();
   capacity_ = 0;
 }

@@ -95,7 +95,9 @@ class EventLogWriter {
   std::atomic<std::int64_t> written_{0};
   std::atomic<bool> io_error_{false};
   WhenFull when_full_ = WhenFull::kWait;
+  static constexpr std::size_t kIoBufferBytes = 1u << 20;
   std::unique_ptr<lcm::LogFile> file_;
+  std::unique_ptr<char[]> io_buffer_;
   std::thread writer_;
   LogDigest digest_;  // writer thread
 };

@@ -42,7 +42,7 @@ bool Executive::finite_state(const RelativeState& s) {
 }
 
 bool Executive::tick_in_window(std::int64_t tick) const {
-  if (tick < 0) return false;
+  if (tick < 0 || tick > cfg_.nav.max_tick) return false;
   if (!have_last_nav_) return true;
   // Both ticks are >= 0, so the difference cannot overflow.
   return tick > last_tick_ && tick - last_tick_ <= cfg_.nav.max_tick_gap;
@@ -53,7 +53,7 @@ NavVerdict Executive::validate(const NavInput& nav) const {
   const double dt = dt_s();
   // Tick and time: ticks count from 0 at the entry interface and t_s = tick / f, so a sample
   // whose time does not match its tick carries a corrupted tick or time; neither can be trusted.
-  if (nav.tick < 0) return NavVerdict::kRejectedTick;
+  if (nav.tick < 0 || nav.tick > w.max_tick) return NavVerdict::kRejectedTick;
   // The tick already accepted: nothing new, whatever it carries (the adapter answers again).
   if (have_last_nav_ && nav.tick == last_tick_) return NavVerdict::kDuplicate;
   if (!std::isfinite(nav.state.t_s) ||
@@ -87,7 +87,7 @@ Status Executive::init(const ExecConfig& cfg, PlanComputer& planner, CommandLaw&
     return Status::kInvalidInput;
   }
   const NavWindows& w = cfg.nav;
-  if (!(w.time_tolerance_ticks > 0.0 && w.time_tolerance_ticks <= 0.5) || w.max_tick_gap < 1 ||
+  if (!(w.time_tolerance_ticks > 0.0 && w.time_tolerance_ticks <= 0.5) || w.max_tick_gap < 1 || w.max_tick < 1 ||
       !(w.altitude_max_m > w.altitude_min_m) || !(w.velocity_max_mps > 0.0) || !(w.specific_force_max_mps2 > 0.0) ||
       !(w.climb_rate_max_mps > 0.0) || !(w.speed_rate_max_mps2 > 0.0)) {
     return Status::kInvalidInput;
@@ -225,7 +225,7 @@ bool Executive::try_adopt(std::int64_t tick, double t_s, CycleOutput& out) {
 
 void Executive::count_skipped(std::int64_t tick) {
   // Ticks never received between the highest one seen and this one (both >= 0: no overflow).
-  if (last_seen_tick_ >= 0 && tick > last_seen_tick_ + 1) {
+  if (last_seen_tick_ >= 0 && tick - 1 > last_seen_tick_) {  // tick >= 0: no overflow
     const std::int64_t gap = tick - last_seen_tick_ - 1;
     const std::int64_t room = std::numeric_limits<int>::max() - counters_.skipped_ticks;
     counters_.skipped_ticks += static_cast<int>(gap < room ? gap : room);

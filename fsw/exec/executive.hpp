@@ -54,6 +54,7 @@ enum class NavVerdict : std::int8_t {
 struct NavWindows {
   double time_tolerance_ticks = 0.25;     // |t_s - tick / f| bound [ticks], (0, 0.5]: nav time is tick / f
   std::int64_t max_tick_gap = 100;        // largest tick step from the last accepted sample [ticks], >= 1
+  std::int64_t max_tick = 1000000000;     // no run is longer [ticks] (3 years at 10 Hz): also bounds a first sample
   double altitude_min_m = -10000.0;       // [m], below any landing site
   double altitude_max_m = 1.0e6;          // [m], far above an entry interface (120-150 km)
   double velocity_max_mps = 15000.0;      // Earth-relative speed [m/s] (escape speed 11.2 km/s + margin)
