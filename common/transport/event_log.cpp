@@ -122,6 +122,10 @@ bool EventLogWriter::open(const std::string& path, std::size_t ring_bytes, WhenF
   io_buffer_.reset(new char[kIoBufferBytes]);
   std::setvbuf(file_->getFilePtr(), io_buffer_.get(), _IOFBF, kIoBufferBytes);
   digest_ = LogDigest{};
+  event_ = std::make_unique<lcm::LogEvent>();
+  event_->channel.reserve(256);
+  channel_.reserve(256);
+  seal_buffer_.assign(256, 0);
   ring_.reset(new std::uint8_t[cap]);
   std::memset(ring_.get(), 0, cap);  // touch the pages now, not in the first cycles
   capacity_ = cap;
@@ -187,9 +191,9 @@ bool EventLogWriter::record_at(const char* channel, const void* data, int len, s
 }
 
 void EventLogWriter::writer_loop() {
-  lcm::LogEvent ev{};
-  std::string channel;
-  channel.reserve(256);
+  // Prepared by open() before this thread started: nothing here allocates after start-up.
+  lcm::LogEvent& ev = *event_;
+  std::string& channel = channel_;
   bool unflushed = false;
   for (;;) {
     const std::uint64_t head = head_.load(std::memory_order_acquire);
@@ -208,13 +212,12 @@ void EventLogWriter::writer_loop() {
         seal.bytes = digest_.bytes();
         seal.crc32 = digest_.crc();
         seal.dropped = dropped_.load(std::memory_order_relaxed);
-        std::vector<std::uint8_t> buf(static_cast<std::size_t>(seal.getEncodedSize()));
-        seal.encode(buf.data(), 0, static_cast<int>(buf.size()));
+        const int n = seal.encode(seal_buffer_.data(), 0, static_cast<int>(seal_buffer_.size()));
         ev.eventnum = 0;
         ev.timestamp = seal.utime;
         ev.channel = kSealChannel;
-        ev.datalen = static_cast<std::int32_t>(buf.size());
-        ev.data = buf.data();
+        ev.datalen = static_cast<std::int32_t>(n > 0 ? n : 0);
+        ev.data = seal_buffer_.data();
         if (file_->writeEvent(&ev) != 0 || std::fflush(file_->getFilePtr()) != 0) {
           io_error_.store(true, std::memory_order_relaxed);
         }

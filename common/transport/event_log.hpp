@@ -27,9 +27,11 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace lcm {
 class LogFile;
+struct LogEvent;
 }
 
 namespace reentry::transport {
@@ -98,6 +100,9 @@ class EventLogWriter {
   static constexpr std::size_t kIoBufferBytes = 1u << 20;
   std::unique_ptr<lcm::LogFile> file_;
   std::unique_ptr<char[]> io_buffer_;
+  std::unique_ptr<lcm::LogEvent> event_;  // writer thread's event and channel, prepared at open()
+  std::string channel_;
+  std::vector<std::uint8_t> seal_buffer_;
   std::thread writer_;
   LogDigest digest_;  // writer thread
 };
