@@ -62,6 +62,15 @@ int main(int argc, char** argv) {
     std::cerr << "loginfo: error: " << scan.error << "\n";
     return 2;
   }
+  // Is it a complete run log (the replay's rule: every tick from 0, a command for each,
+  // END_OF_RUN after the last sample) and whole (sealed, nothing dropped by its writer)?
+  const bool run_whole = run.complete() && !scan.malformed() && scan.sealed && scan.seal_dropped == 0;
+  const std::string run_problem =
+      scan.malformed()         ? "damaged log: " + scan.describe()
+      : !run.problem().empty() ? run.problem()
+      : !scan.sealed           ? std::string("not sealed: its writer did not close it, or another tool wrote it")
+      : scan.seal_dropped > 0  ? "its writer dropped " + std::to_string(scan.seal_dropped) + " records"
+                               : std::string();
 
   if (as_json) {
     nlohmann::ordered_json j;
@@ -71,14 +80,9 @@ int main(int argc, char** argv) {
     j["event_span_s"] = static_cast<double>(last_event_us - first_event_us) * 1e-6;
     j["malformed"] = scan.malformed();
     if (scan.malformed()) j["problem"] = scan.describe();
-    // Is it a complete lockstep run (every tick from 0, a command for each, END_OF_RUN)?
     nlohmann::ordered_json r;
-    r["complete"] = run.complete() && !scan.malformed() && scan.sealed && scan.seal_dropped == 0;
-    r["problem"] = scan.malformed()         ? "damaged log: " + scan.describe()
-                   : !run.problem().empty() ? run.problem()
-                   : !scan.sealed           ? std::string("not sealed: its writer did not close it, or another tool wrote it")
-                   : scan.seal_dropped > 0  ? "its writer dropped " + std::to_string(scan.seal_dropped) + " records"
-                                            : std::string();
+    r["complete"] = run_whole;
+    r["problem"] = run_problem;
     r["sealed"] = scan.sealed;
     r["nav_events"] = run.nav_events;
     r["nav_ticks"] = run.nav_ticks;
@@ -111,15 +115,10 @@ int main(int argc, char** argv) {
                 static_cast<long long>(scan.file_bytes),
                 static_cast<double>(last_event_us - first_event_us) * 1e-6);
     if (run.nav_events > 0) {
-      const bool whole = run.complete() && !scan.malformed() && scan.sealed && scan.seal_dropped == 0;
-      const std::string why = scan.malformed() ? "damaged log"
-                              : !run.problem().empty() ? run.problem()
-                              : !scan.sealed ? "not sealed"
-                                             : "records dropped by its writer";
-      std::printf("run      %s\n", whole ? ("complete and sealed: ticks 0.." + std::to_string(run.last_tick) +
-                                            ", END_OF_RUN " + reentry::transport::end_event_name(run.end_event))
-                                               .c_str()
-                                      : ("incomplete: " + why).c_str());
+      std::printf("run      %s\n", run_whole ? ("complete and sealed: ticks 0.." + std::to_string(run.last_tick) +
+                                                ", END_OF_RUN " + reentry::transport::end_event_name(run.end_event))
+                                                   .c_str()
+                                          : ("incomplete: " + run_problem).c_str());
     }
     std::printf("\n%-18s %-28s %9s %9s %10s %10s %6s\n", "channel", "type", "messages", "skipped", "rate_Hz",
                 "span_s", "clock");
