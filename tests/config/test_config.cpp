@@ -154,6 +154,17 @@ struct BadCase {
   const char* value;  // expected in the message
 };
 
+// 70 increasing values (more than the 64 the on-board tables hold).
+std::string seventy(double first, double step, const char* key, bool open_array) {
+  std::string s = std::string(key) + " = [";
+  for (int i = 0; i < 70; ++i) s += std::to_string(first + step * i) + (i + 1 < 70 || open_array ? ", " : "]");
+  return s;
+}
+const std::string kSeventyEnergiesText = seventy(0.0, 1.0 / 69.0, "energy", false);
+const std::string kSeventyAlphasText = seventy(-70.0, 1.0, "alpha_deg", true);  // + the file's 55 = 125
+const char* const kSeventyEnergies = kSeventyEnergiesText.c_str();
+const char* const kSeventyAlphas = kSeventyAlphasText.c_str();
+
 class BadInput : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadInput, IsRejectedNamingFileKeyAndValue) {
@@ -194,7 +205,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"ragged_row", true, "cl = [\n  [0.000000, ", "cl = [\n  [", "aero.cl[0]", "5 values"},
         BadCase{"mach_order", true, "mach = [2.010000, 3.490000", "mach = [3.490000, 2.010000", "aero.mach[1]", "2.01"},
         BadCase{"policy_enum", true, "out_of_range = \"clamp\"", "out_of_range = \"wrap\"", "aero.out_of_range", "\"wrap\""},
-        BadCase{"negative_cd", true, "cd = [\n  [0.200841", "cd = [\n  [-0.200841", "aero.cd[0][0]", "-0.200841"}),
+        BadCase{"negative_cd", true, "cd = [\n  [0.200841", "cd = [\n  [-0.200841", "aero.cd[0][0]", "-0.200841"},
+        // Limits equal to the on-board capacities and rates guidance can run at (issue 29).
+        BadCase{"gnc_rate_tiny", false, "gnc_rate_hz = 10.0", "gnc_rate_hz = 1e-9", "guidance.gnc_rate_hz", "1e-09"},
+        BadCase{"gnc_rate_huge", false, "gnc_rate_hz = 10.0", "gnc_rate_hz = 5000.0", "guidance.gnc_rate_hz", "5000"},
+        BadCase{"latency_zero", false, "plan_latency_ticks = 5", "plan_latency_ticks = 0", "guidance.plan_latency_ticks", "0"},
+        BadCase{"alpha_profile_70_rows", false, "energy = [0.000, 0.120, 0.414, 1.000]", kSeventyEnergies,
+                "alpha_profile.energy", "has 70 values"},
+        BadCase{"aero_alpha_over_64_rows", true, "alpha_deg = [0.000000,", kSeventyAlphas, "aero.alpha_deg",
+                "has 125 values; the on-board aerodynamic table holds at most 64"}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return std::string(info.param.label); });
 
 TEST(ConfigLoad, PlannedAlphaProfileNeedsNoTable) {

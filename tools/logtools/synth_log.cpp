@@ -306,7 +306,7 @@ int main(int argc, char** argv) {
   const Sample& last = traj.back();
   reentry::run_control_t rc{};
   rc.utime = static_cast<int64_t>(std::llround(last.t_s * 1e6));
-  rc.tick = static_cast<int64_t>(traj.size() - 1);
+  rc.tick = static_cast<int64_t>(traj.size());  // as the simulator: the end tick has no sample
   rc.command = reentry::run_control_t::END_OF_RUN;
   rc.event = reentry::run_control_t::EVENT_TAEM;
   rc.final_altitude_m = last.r_m - kEarthRadius_m;

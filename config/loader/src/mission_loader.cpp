@@ -304,10 +304,27 @@ bool parse_file(const std::string& path, toml::table& out, ErrorSink& sink) {
 
 constexpr double kAlphaLoDeg = -90.0, kAlphaHiDeg = 90.0;
 
+// On-board capacities (fsw/core, fixed-size storage): a file the loader accepts must load on
+// board too, so the loader's limits are these (tests/config/test_onboard_capacity.cpp checks
+// that they equal the flight code's constants). The guidance tunables' limits (rk4_steps, ...)
+// are checked by the flight software's parameter lists (fsw/guidance/mission_adapter).
+constexpr std::size_t kOnboardAeroAlphaRows = 64;      // OnboardAero::kMaxAlpha
+constexpr std::size_t kOnboardAeroMachColumns = 64;    // OnboardAero::kMaxMach
+constexpr std::size_t kOnboardAlphaProfilePoints = 64; // AlphaProfile::kCapacity
+
+void check_capacity(Reader& r, const std::string& key, std::size_t n, std::size_t capacity, const char* holder) {
+  if (n > capacity) {
+    r.fail(key, "has " + std::to_string(n) + " values; the on-board " + holder + " holds at most " +
+                    std::to_string(capacity));
+  }
+}
+
 void read_grid(Reader& r, std::vector<double>& alpha_rad, std::vector<double>& mach) {
   alpha_rad = r.numbers("alpha_deg", true, kAlphaLoDeg, kAlphaHiDeg);
+  check_capacity(r, "alpha_deg", alpha_rad.size(), kOnboardAeroAlphaRows, "aerodynamic table");
   for (double& a : alpha_rad) a *= kDegToRad;
   mach = r.numbers("mach", true, 0.0, 100.0);
+  check_capacity(r, "mach", mach.size(), kOnboardAeroMachColumns, "aerodynamic table");
 }
 
 Table2D read_table(Reader& r, const std::string& key, const std::vector<double>& alpha_rad,
@@ -516,6 +533,7 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
     if (ap.has("alpha_deg")) ap.fail("alpha_deg", "not allowed with source = \"planned\" (the profile is planned)");
   } else {
     m.alpha_profile.x = ap.numbers("energy", true, 0.0, 2.0);
+    check_capacity(ap, "energy", m.alpha_profile.x.size(), kOnboardAlphaProfilePoints, "alpha profile");
     m.alpha_profile.y = ap.numbers("alpha_deg", false, 0.0, 90.0);
   }
   for (double& a : m.alpha_profile.y) a *= kDegToRad;
@@ -531,8 +549,10 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
 
   Reader g = top.sub("guidance");
   GuidanceParams& gp = m.guidance;
-  gp.gnc_rate_hz = g.number("gnc_rate_hz", 0.0, 10000.0, true);
-  gp.plan_latency_ticks = g.integer("plan_latency_ticks", 0, 100000);
+  // A guidance cycle between 1 and 100 Hz: slower cannot track a drag profile through the
+  // pull-out, faster leaves no time for the tracker and the link supervision in ticks.
+  gp.gnc_rate_hz = g.number("gnc_rate_hz", 1.0, 100.0);
+  gp.plan_latency_ticks = g.integer("plan_latency_ticks", 1, 1000);  // the executive adopts at k + L, L >= 1
   gp.replan_period_s = g.number("replan_period_s", 0.0, 1e5, true);
   gp.replan_drag_error_frac = g.number("replan_drag_error_frac", 0.0, 10.0, true);
   gp.drag_profile = g.choice("drag_profile", {"three_segment", "smooth"});
