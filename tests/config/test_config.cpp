@@ -145,6 +145,9 @@ TEST(ConfigLoad, HorusAndOrbiterMatchTables) {
   EXPECT_NEAR(o.mission.constraints.dynamic_pressure_max_Pa, 342.0 * kPsf, 1e-3);
   EXPECT_DOUBLE_EQ(o.mission.vehicle.mass_kg, 104330.0);
   EXPECT_EQ(o.mission.constraints.q_alpha_max_Pa_rad, reentry::config::kNotConstrained);
+  // The 70 BTU/(ft^2 s) limit is Betts's wing-leading-edge one (README, vehicle file).
+  EXPECT_EQ(o.mission.vehicle.heating_model, reentry::config::HeatingModel::kBettsLeadingEdge);
+  EXPECT_EQ(h.mission.vehicle.heating_model, reentry::config::HeatingModel::kChapmanStagnation);  // default
 }
 
 // Orbiter table entries equal the public data file (parsed here with a separate reader).
@@ -231,6 +234,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"wind_order", false, "wind_scale_min = 0.0", "wind_scale_min = 2.0", "dispersions.wind_scale_max", "1.5"},
         BadCase{"negative_mass", true, "mass_kg = 37650.0", "mass_kg = -1.0", "vehicle.mass_kg", "-1"},
         BadCase{"zero_area", true, "reference_area_m2 = 149.4", "reference_area_m2 = 0.0", "vehicle.reference_area_m2", "0"},
+        BadCase{"heating_enum", true, "nose_radius_m = 0.8", "nose_radius_m = 0.8\nheating_model = \"fay_riddell\"",
+                "vehicle.heating_model", "\"fay_riddell\""},
         BadCase{"zero_nose", true, "nose_radius_m = 0.8", "nose_radius_m = 0", "vehicle.nose_radius_m", "0"},
         BadCase{"ragged_row", true, "cl = [\n  [0.000000, ", "cl = [\n  [", "aero.cl[0]", "5 values"},
         BadCase{"mach_order", true, "mach = [2.010000, 3.490000", "mach = [3.490000, 2.010000", "aero.mach[1]", "2.01"},

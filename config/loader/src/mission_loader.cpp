@@ -333,6 +333,10 @@ void read_vehicle_file(const std::string& path, Vehicle& v, ErrorSink& sink) {
   v.mass_kg = vr.number("mass_kg", 0.0, 1e7, true);
   v.reference_area_m2 = vr.number("reference_area_m2", 0.0, 1e4, true);
   v.nose_radius_m = vr.number("nose_radius_m", 0.0, 100.0, true);
+  v.heating_model = vr.choice("heating_model", {"chapman_stagnation", "betts_leading_edge"}, false,
+                              "chapman_stagnation") == "betts_leading_edge"
+                        ? HeatingModel::kBettsLeadingEdge
+                        : HeatingModel::kChapmanStagnation;
   vr.finish();
 
   Reader ar = top.sub("aero");

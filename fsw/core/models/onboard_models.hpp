@@ -129,6 +129,12 @@ class AlphaProfile {
   double alpha_rad_[kCapacity] = {};
 };
 
+/// Heat-flux model of the constrained point, q = C(alpha) sqrt(rho) V^c2 in both cases.
+enum class HeatFluxModel {
+  kChapmanStagnation,  // (3.5)/(3.6): C = c1 / (sqrt(RN) sqrt(rho0) Vc^c2), c2 = 3
+  kBettsLeadingEdge,   // Betts 2010 (6.1) Shuttle wing leading edge: C = qa(alpha) K, c2 = 3.07
+};
+
 /// Everything the planner needs about the vehicle and its environment.
 class OnboardModels {
  public:
@@ -139,7 +145,9 @@ class OnboardModels {
   OnboardAtmosphere& atmosphere() { return atmosphere_; }
   OnboardAero& aero() { return aero_; }
 
-  void set_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m);
+  /// Mass, area and the heat-flux model (nose_radius_m is used by kChapmanStagnation only).
+  void set_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m,
+                   HeatFluxModel heating = HeatFluxModel::kChapmanStagnation);
   double mass_kg() const { return mass_kg_; }
   double area_over_mass() const { return area_over_mass_m2pkg_; }
 
@@ -164,12 +172,17 @@ class OnboardModels {
                                 double energy_b_Jpkg, double altitude_b_m) const;
   /// (1/rho) d rho / dr by a central difference of ln rho over +-step_m (7.14-7.16).
   double dlnrho_dr_fd(double altitude_m, double step_m) const;
-  /// Convective stagnation heat flux (3.5): c1/sqrt(RN) sqrt(rho/rho0) (V/Vc)^c2.
-  double heat_flux_Wpm2(double density_kgpm3, double velocity_mps) const;
-  /// C of (3.6): q = C sqrt(rho) V^c2.
-  double heat_flux_constant() const { return heat_constant_; }
-  static constexpr double kHeatC1 = 1.06584e8;
+  /// Heat flux of the vehicle's model, q = C(alpha) sqrt(rho) V^c2: Chapman stagnation point
+  /// (3.5)/(3.6), c1/sqrt(RN) sqrt(rho/rho0) (V/Vc)^3, alpha-free; or Betts's leading edge.
+  double heat_flux_Wpm2(double density_kgpm3, double velocity_mps, double alpha_rad) const;
+  /// C(alpha) of q = C sqrt(rho) V^c2, SI (W/m^2 per sqrt(kg/m^3) (m/s)^c2).
+  double heat_flux_coefficient(double alpha_rad) const;
+  /// c2 of q = C sqrt(rho) V^c2.
+  double heat_flux_velocity_exponent() const { return heat_exponent_; }
+  HeatFluxModel heat_flux_model() const { return heating_; }
+  static constexpr double kHeatC1 = 1.06584e8;  // (3.5), W/m^(3/2)
   static constexpr double kHeatC2 = 3.0;
+  static constexpr double kBettsHeatC2 = 3.07;  // Betts 2010, 6.1
 
  private:
   OnboardAtmosphere atmosphere_;
@@ -177,7 +190,9 @@ class OnboardModels {
   double mass_kg_ = 1.0;
   double area_over_mass_m2pkg_ = 0.0;
   double nose_radius_m_ = 1.0;
-  double heat_constant_ = 0.0;
+  HeatFluxModel heating_ = HeatFluxModel::kChapmanStagnation;
+  double heat_constant_ = 0.0;  // Chapman: C; Betts: K, C = qa(alpha) K
+  double heat_exponent_ = kHeatC2;
 };
 
 }  // namespace reentry::fsw

@@ -173,8 +173,7 @@ Status EntryPlanner::equilibrium_glide_radius() {
 
 void EntryPlanner::corridor() {
   const double s_over_m = models_.area_over_mass();
-  const double c_heat = models_.heat_flux_constant();
-  const double two_c2m2 = 2.0 * (OnboardModels::kHeatC2 - 1.0);
+  const double two_c2m2 = 2.0 * (models_.heat_flux_velocity_exponent() - 1.0);
   const double span = e0_ - taem_energy_;
   for (int k = 0; k < kGrid; ++k) {
     const double r = r_[k];
@@ -184,6 +183,7 @@ void EntryPlanner::corridor() {
     double cl, cd;
     models_.aero().coefficients(alpha_[k], models_.mach(h, v), cl, cd);
     const double alpha = alpha_[k];
+    const double c_heat = models_.heat_flux_coefficient(alpha);  // q = C(alpha) sqrt(rho) V^c2
     d_heat_[k] = (heat_max_ * heat_max_ * cd * s_over_m) / (2.0 * c_heat * c_heat * std::pow(v, two_c2m2));  // (7.3)
     d_qalpha_[k] = alpha > 1e-6 ? q_alpha_max_ * cd * s_over_m / alpha : config::kNotConstrained;         // (7.4)
     const double d_load = n_max_ / (cl / cd * std::cos(alpha) + std::sin(alpha));                           // (7.5)

@@ -509,7 +509,7 @@ double EntryTracker::constraint_drag_limit_mps2(const RelativeState& s, double a
   scale_linear(q, q_max_Pa_);
   scale_linear(q * alpha_rad, q_alpha_max_Pa_rad_);
   scale_linear(std::hypot(D, s.lift_mps2), load_factor_max_mps2_);
-  const double heat = models_.heat_flux_Wpm2(2.0 * q / (s.velocity_mps * s.velocity_mps), s.velocity_mps);
+  const double heat = models_.heat_flux_Wpm2(2.0 * q / (s.velocity_mps * s.velocity_mps), s.velocity_mps, alpha_rad);
   if (heat_flux_max_Wpm2_ > 0.0 && heat > 0.0) {
     const double ratio = kConstraintMargin * heat_flux_max_Wpm2_ / heat;
     limit = std::fmin(limit, D * ratio * ratio);

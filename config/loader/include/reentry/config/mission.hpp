@@ -53,11 +53,18 @@ struct AeroModel {
   OutOfRangePolicy out_of_range = OutOfRangePolicy::kClamp;
 };
 
+/// Heat-flux model of the point whose limit the mission constrains (`vehicle.heating_model`).
+enum class HeatingModel {
+  kChapmanStagnation,  // "chapman_stagnation": stagnation point at the nose radius (thesis 3.5)
+  kBettsLeadingEdge,   // "betts_leading_edge": Shuttle wing leading edge, alpha dependent (Betts 2010, 6.1)
+};
+
 struct Vehicle {
   std::string name;
   double mass_kg = 0.0;
   double reference_area_m2 = 0.0;
-  double nose_radius_m = 0.0;
+  double nose_radius_m = 0.0;     // used by chapman_stagnation
+  HeatingModel heating_model = HeatingModel::kChapmanStagnation;
   AeroModel aero;
 };
 
