@@ -142,17 +142,38 @@ transport_delay_ticks = 0
 time_limit_s = 4000.0
 
 [dispersions]
+# Reference campaigns (tools/mc, tools/sil --seed): DESIGN 8's dispersion table read as entry
+# Monte Carlo studies mean it, every number 3 sigma of a Gaussian truncated at 3 sigma.
+# A quantity may take its own: <quantity>_distribution = "uniform" (its number: the half-width).
+distribution = "gaussian"
 entry_flight_path_deg = 0.2
 entry_heading_deg = 0.5
 entry_velocity_mps = 20.0
 entry_position_deg = 0.0
 density_scale = 0.15
-density_perturbation = 0.05
+density_perturbation = 0.05      # amplitude of the altitude-correlated shape (random phases; no distribution)
 density_correlation_m = 10000.0
 cl_scale = 0.10
 cd_scale = 0.10
 mass_scale = 0.05
-wind_scale_min = 0.0
+wind_scale_min = 0.0             # wind profile scale range (gaussian: about its centre, 3 sigma at its ends)
+wind_scale_max = 1.5
+
+[stress_dispersions]
+# Stress campaign (tools/mc --dispersions stress): the same numbers as uniform half-widths (the
+# campaigns of sessions 1-16), every value up to the edge as likely as the nominal one.
+distribution = "uniform"
+entry_flight_path_deg = 0.2
+entry_heading_deg = 0.5
+entry_velocity_mps = 20.0
+entry_position_deg = 0.0
+density_scale = 0.15
+density_perturbation = 0.05      # amplitude of the altitude-correlated shape (random phases; no distribution)
+density_correlation_m = 10000.0
+cl_scale = 0.10
+cd_scale = 0.10
+mass_scale = 0.05
+wind_scale_min = 0.0             # wind profile scale range (gaussian: about its centre, 3 sigma at its ends)
 wind_scale_max = 1.5
 
 [environment]

@@ -231,6 +231,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"alpha_planned_with_table", false, "[alpha_profile]\n", "[alpha_profile]\nsource = \"planned\"\n",
                 "alpha_profile.energy", "not allowed"},
         BadCase{"parse_error", false, "[guidance]", "[guidance", "parse error", "line"},
+        BadCase{"distribution_enum", false, "\ndistribution = \"gaussian\"", "\ndistribution = \"normal\"",
+                "dispersions.distribution", "\"normal\""},
+        BadCase{"distribution_override_enum", false, "entry_heading_deg = 0.5\n",
+                "entry_heading_deg = 0.5\nentry_heading_distribution = \"lognormal\"\n",
+                "dispersions.entry_heading_distribution", "\"lognormal\""},
+        BadCase{"stress_distribution_enum", false, "\ndistribution = \"uniform\"", "\ndistribution = \"flat\"",
+                "stress_dispersions.distribution", "\"flat\""},
+        BadCase{"negative_three_sigma", false, "cl_scale = 0.10", "cl_scale = -0.10", "dispersions.cl_scale", "-0.1"},
         BadCase{"wind_order", false, "wind_scale_min = 0.0", "wind_scale_min = 2.0", "dispersions.wind_scale_max", "1.5"},
         BadCase{"negative_mass", true, "mass_kg = 37650.0", "mass_kg = -1.0", "vehicle.mass_kg", "-1"},
         BadCase{"zero_area", true, "reference_area_m2 = 149.4", "reference_area_m2 = 0.0", "vehicle.reference_area_m2", "0"},
@@ -242,6 +250,33 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"policy_enum", true, "out_of_range = \"clamp\"", "out_of_range = \"wrap\"", "aero.out_of_range", "\"wrap\""},
         BadCase{"negative_cd", true, "cd = [\n  [0.200841", "cd = [\n  [-0.200841", "aero.cd[0][0]", "-0.200841"}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return std::string(info.param.label); });
+
+TEST(ConfigLoad, DispersionSetsAreGaussianReferenceAndUniformStress) {
+  const LoadResult r = load_mission("x33");
+  ASSERT_TRUE(r.ok) << r.error;
+  const auto& ref = r.mission.dispersions;
+  ASSERT_TRUE(r.mission.has_stress_dispersions);
+  const auto& stress = r.mission.stress_dispersions;
+  using reentry::config::Distribution;
+  EXPECT_EQ(ref.entry_flight_path_rad.distribution, Distribution::kGaussian);
+  EXPECT_NEAR(ref.entry_flight_path_rad.value, 0.2 * kDeg, 1e-15);  // 3 sigma
+  EXPECT_EQ(ref.wind_scale_distribution, Distribution::kGaussian);
+  EXPECT_EQ(stress.entry_flight_path_rad.distribution, Distribution::kUniform);
+  EXPECT_NEAR(stress.entry_flight_path_rad.value, 0.2 * kDeg, 1e-15);  // half-width
+  EXPECT_EQ(stress.cd_scale.distribution, Distribution::kUniform);
+  EXPECT_EQ(stress.wind_scale_distribution, Distribution::kUniform);
+  EXPECT_DOUBLE_EQ(stress.wind_scale_max, 1.5);
+  // A quantity's own distribution overrides the section's.
+  TempMission t;
+  const std::string from = "entry_heading_deg = 0.5\n";
+  const size_t at = t.mission().find(from);
+  ASSERT_NE(at, std::string::npos);
+  t.mission().insert(at + from.size(), "entry_heading_distribution = \"uniform\"\n");
+  const LoadResult o = t.load();
+  ASSERT_TRUE(o.ok) << o.error;
+  EXPECT_EQ(o.mission.dispersions.entry_heading_rad.distribution, Distribution::kUniform);
+  EXPECT_EQ(o.mission.dispersions.entry_velocity_mps.distribution, Distribution::kGaussian);
+}
 
 TEST(ConfigLoad, PlannedAlphaProfileNeedsNoTable) {
   const LoadResult r = load_mission("x33_planned_alpha");

@@ -145,20 +145,35 @@ struct SimParams {
   double time_limit_s = 4000.0;
 };
 
-/// Half-widths of uniform dispersions (Monte Carlo), SI.
+/// Distribution of one dispersed quantity (`distribution`, `<quantity>_distribution`).
+enum class Distribution {
+  kGaussian,  // "gaussian": the number is 3 sigma; draws are truncated at 3 sigma
+  kUniform,   // "uniform": the number is the half-width
+};
+
+/// One dispersed quantity: offsets and scale factors are centred on the nominal value.
+struct Dispersion {
+  double value = 0.0;  // 3 sigma (gaussian) or half-width (uniform), SI
+  Distribution distribution = Distribution::kGaussian;
+};
+
+/// Monte Carlo dispersions of one campaign set ([dispersions] or [stress_dispersions]), SI.
 struct Dispersions {
-  double entry_flight_path_rad = 0.0;
-  double entry_heading_rad = 0.0;
-  double entry_velocity_mps = 0.0;
-  double entry_position_rad = 0.0;       // lat/lon
-  double density_scale = 0.0;            // +-fraction
-  double density_perturbation = 0.0;     // amplitude of the altitude-correlated part
+  Dispersion entry_flight_path_rad;
+  Dispersion entry_heading_rad;
+  Dispersion entry_velocity_mps;
+  Dispersion entry_position_rad;         // lat/lon
+  Dispersion density_scale;              // fraction
+  double density_perturbation = 0.0;     // amplitude of the altitude-correlated part (a random shape)
   double density_correlation_m = 10000.0;
-  double cl_scale = 0.0;
-  double cd_scale = 0.0;
-  double mass_scale = 0.0;
+  Dispersion cl_scale;
+  Dispersion cd_scale;
+  Dispersion mass_scale;
+  // Wind profile scale over [min, max]: uniform over it, or gaussian about its centre with
+  // 3 sigma at its ends.
   double wind_scale_min = 1.0;
   double wind_scale_max = 1.0;
+  Distribution wind_scale_distribution = Distribution::kGaussian;
 };
 
 /// Environment data files (paths resolved relative to the mission file).
@@ -182,7 +197,10 @@ struct Mission {
   bool alpha_profile_planned = false;
   GuidanceParams guidance;
   SimParams sim;
-  Dispersions dispersions;
+  Dispersions dispersions;               // reference campaigns (and seeded SIL runs)
+  // [stress_dispersions]: a second, named set (tools/mc --dispersions stress); optional.
+  bool has_stress_dispersions = false;
+  Dispersions stress_dispersions;
   EnvironmentData environment;
 };
 
