@@ -98,6 +98,7 @@ Status EntryPlanner::init(const config::Mission& mission) {
     return Status::kInvalidInput;
   }
   ranging_blend_min_ = 0.0;
+  flown_side_known_ = false;
   initialised_ = true;
   return Status::kOk;
 }
@@ -752,7 +753,16 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   diag_.b_mission_rad = gc.arc_rad;
   diag_.a_mission_rad = gc.azimuth_rad;
   diag_.chi_minus_a_rad = wrap_pi(from_.heading_rad - a_mission_);
+  // First bank side: the quadrant rule (fig. 7.20) at the first plan. A replan keeps the side
+  // the last plan flies at the planning energy (reversal search tries the other side only
+  // when no single reversal nulls the crossrange with it): the heading offset crosses zero
+  // while the first bank turns the vehicle towards the target, and re-applying the rule there
+  // reverses the bank for nothing; at high speed with a slow roll (Orbiter, 80 deg at
+  // 2 deg/s) that roll through wings level lasts 80 s and leaves a phugoid.
   sign0_ = initial_bank_sign(from_.heading_rad, a_mission_);
+  if (flown_side_known_ && from_.energy_Jpkg > e_corridor_) {
+    sign0_ = from_.energy_Jpkg > flown_e_rev_ ? flown_sign0_ : -flown_sign0_;
+  }
   diag_.initial_bank_sign = sign0_;
   r_mean_ = 0.5 * (from_.radius_m + taem_radius_);
   const double range_desired = gc.arc_rad * r_mean_;  // R_d
@@ -816,6 +826,11 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   diag_.status = too_long ? Status::kRangeTooLong : (converged ? Status::kOk : Status::kNotConverged);
   fill_output(out);
   if (converged) ranging_blend_min_ = diag_.ranging_blend;
+  if (diag_.status == Status::kOk || too_long) {  // the plans the tracker flies
+    flown_side_known_ = true;
+    flown_sign0_ = sign0_;
+    flown_e_rev_ = e_rev_;
+  }
   return diag_.status;
 }
 
