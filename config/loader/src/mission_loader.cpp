@@ -537,6 +537,7 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
   gp.drag_profile = g.choice("drag_profile", {"three_segment", "smooth"});
   gp.initial_drag = g.choice("initial_drag", {"actual", "lmin"});
   gp.onboard_atmosphere = g.choice("onboard_atmosphere", {"exponential", "table"});
+  gp.onboard_trim = g.boolean("onboard_trim", false, true);
   gp.rk4_steps = g.integer("rk4_steps", 10, 100000);
   gp.max_length_iterations = g.integer("max_length_iterations", 1, 1000);
   gp.downrange_tol_m = g.number("downrange_tol_m", 0.0, 1e6, true);

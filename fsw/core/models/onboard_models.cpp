@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <string>
 
 #include <reentry/config/mission.hpp>
@@ -159,6 +160,66 @@ Status OnboardAero::init(const config::AeroModel& aero) {
   return init(aero.cl.alpha_rad.data(), na, aero.cl.mach.data(), nm, aero.cl.values.data(), aero.cd.values.data());
 }
 
+namespace {
+// config::AeroModel -> TrimAeroData (start-up): the base tables and the first body flap and
+// elevon surface, in that trim order. Tables on another grid than cl's are refused.
+Status to_trim_data(const config::AeroModel& aero, TrimAeroData& d) {
+  const std::size_t na = aero.cl.alpha_rad.size(), nm = aero.cl.mach.size(), nodes = na * nm;
+  if (na > TrimAeroData::kMaxAlpha || nm > TrimAeroData::kMaxMach || nodes > TrimSurfaceData::kMaxNodes) {
+    return Status::kCapacityExceeded;
+  }
+  auto same_grid = [&](const config::Table2D& t) {
+    return t.alpha_rad == aero.cl.alpha_rad && t.mach == aero.cl.mach && t.values.size() == nodes;
+  };
+  if (!same_grid(aero.cl) || !same_grid(aero.cd) || !same_grid(aero.cm)) return Status::kInvalidInput;
+  d.n_alpha = static_cast<int>(na);
+  d.n_mach = static_cast<int>(nm);
+  std::memcpy(d.alpha_rad, aero.cl.alpha_rad.data(), sizeof(double) * na);
+  std::memcpy(d.mach, aero.cl.mach.data(), sizeof(double) * nm);
+  std::memcpy(d.cl, aero.cl.values.data(), sizeof(double) * nodes);
+  std::memcpy(d.cd, aero.cd.values.data(), sizeof(double) * nodes);
+  std::memcpy(d.cm, aero.cm.values.data(), sizeof(double) * nodes);
+  d.n_surfaces = 0;
+  for (const char* name : {"body_flap", "elevon"}) {
+    for (const config::ControlSurface& cs : aero.surfaces) {
+      if (cs.name != name) continue;
+      const std::size_t nd = cs.deflection_rad.size();
+      if (nd > TrimSurfaceData::kMaxDeflections) return Status::kCapacityExceeded;
+      if (cs.dcl.size() != nd || cs.dcd.size() != nd || cs.dcm.size() != nd) return Status::kInvalidInput;
+      TrimSurfaceData& s = d.surface[d.n_surfaces++];
+      s.count = cs.count;
+      s.min_rad = cs.min_rad;
+      s.max_rad = cs.max_rad;
+      s.n_deflections = static_cast<int>(nd);
+      for (std::size_t k = 0; k < nd; ++k) {
+        if (!same_grid(cs.dcl[k]) || !same_grid(cs.dcd[k]) || !same_grid(cs.dcm[k])) return Status::kInvalidInput;
+        s.deflection_rad[k] = cs.deflection_rad[k];
+        std::memcpy(s.dcl[k], cs.dcl[k].values.data(), sizeof(double) * nodes);
+        std::memcpy(s.dcd[k], cs.dcd[k].values.data(), sizeof(double) * nodes);
+        std::memcpy(s.dcm[k], cs.dcm[k].values.data(), sizeof(double) * nodes);
+      }
+      break;  // the first surface of each kind trims (as in the truth model)
+    }
+  }
+  return d.n_surfaces > 0 ? Status::kOk : Status::kInvalidInput;
+}
+}  // namespace
+
+Status OnboardAero::init_trimmed(const TrimAeroData& data) {
+  double cl[TrimSurfaceData::kMaxNodes];
+  double cd[TrimSurfaceData::kMaxNodes];
+  const Status s = solve_trimmed_coefficients(data, cl, cd);
+  if (s != Status::kOk) return s;
+  return init(data.alpha_rad, data.n_alpha, data.mach, data.n_mach, cl, cd);
+}
+
+Status OnboardAero::init_trimmed(const config::AeroModel& aero) {
+  auto data = std::make_unique<TrimAeroData>();  // start-up only (about 0.8 MB)
+  const Status s = to_trim_data(aero, *data);
+  if (s != Status::kOk) return s;
+  return init_trimmed(*data);
+}
+
 double OnboardAero::interpolate(const double* table, double alpha_rad, double mach) const {
   return numerics::bilinear(alpha_rad_, n_alpha_, mach_, n_mach_, table, alpha_rad, mach, &hint_alpha_,
                             &hint_mach_);  // clamped at the edges
@@ -225,7 +286,9 @@ Status OnboardModels::init(const config::Mission& mission) {
   set_vehicle(v.mass_kg, v.reference_area_m2, v.nose_radius_m,
               v.heating_model == config::HeatingModel::kBettsLeadingEdge ? HeatFluxModel::kBettsLeadingEdge
                                                                          : HeatFluxModel::kChapmanStagnation);
-  Status s = aero_.init(v.aero);
+  // Trimmed tables where the vehicle has moment and control-surface data (thesis 3.4).
+  aero_trimmed_ = mission.guidance.onboard_trim && !v.aero.cm.empty() && !v.aero.surfaces.empty();
+  Status s = aero_trimmed_ ? aero_.init_trimmed(v.aero) : aero_.init(v.aero);
   if (s != Status::kOk) return s;
   if (mission.guidance.onboard_atmosphere == "table") {
     std::string path = mission.environment.us76_table;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "guidance_types.hpp"
+#include "models/onboard_trim.hpp"
 
 namespace reentry::config {
 struct Mission;
@@ -81,13 +82,19 @@ class OnboardAtmosphere {
   double temperature_K_[kCapacity] = {};
 };
 
-/// Basic (untrimmed) CL and CD over (alpha, Mach), bilinear, clamped at the table edges.
+/// CL and CD over (alpha, Mach), bilinear, clamped at the table edges: the basic tables, or
+/// the trimmed ones solved at start-up (onboard_trim.hpp).
 class OnboardAero {
  public:
   static constexpr int kMaxAlpha = 64;
   static constexpr int kMaxMach = 64;
 
   Status init(const config::AeroModel& aero);
+  /// Trimmed C_L, C_D on the data's grid (solve_trimmed_coefficients). Start-up only.
+  Status init_trimmed(const TrimAeroData& data);
+  /// The same from the loader's model (body flap and elevon surfaces); allocates the trim data
+  /// at start-up.
+  Status init_trimmed(const config::AeroModel& aero);
   /// Direct initialisation from arrays (row-major, values[i_alpha * n_mach + i_mach]).
   Status init(const double* alpha_rad, int n_alpha, const double* mach, int n_mach,
               const double* cl, const double* cd);
@@ -142,6 +149,8 @@ class OnboardModels {
 
   const OnboardAtmosphere& atmosphere() const { return atmosphere_; }
   const OnboardAero& aero() const { return aero_; }
+  /// The aero tables are the start-up trim solution (moment and surface data, guidance.onboard_trim).
+  bool aero_trimmed() const { return aero_trimmed_; }
   OnboardAtmosphere& atmosphere() { return atmosphere_; }
   OnboardAero& aero() { return aero_; }
 
@@ -187,6 +196,7 @@ class OnboardModels {
  private:
   OnboardAtmosphere atmosphere_;
   OnboardAero aero_;
+  bool aero_trimmed_ = false;
   double mass_kg_ = 1.0;
   double area_over_mass_m2pkg_ = 0.0;
   double nose_radius_m_ = 1.0;

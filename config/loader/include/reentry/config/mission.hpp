@@ -116,6 +116,7 @@ struct GuidanceParams {
   std::string drag_profile = "smooth";   // "three_segment" (thesis 7.2) or "smooth"
   std::string initial_drag = "actual";   // "actual" or "lmin" (thesis 7.6)
   std::string onboard_atmosphere = "exponential";  // "exponential" or "table"
+  bool onboard_trim = true;              // trimmed on-board aero tables where moment data exist
   int rk4_steps = 600;                   // reduced-order integration steps
   int max_length_iterations = 20;
   double downrange_tol_m = 1500.0;
