@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <sstream>
 #include <vector>
@@ -77,6 +78,46 @@ std::string read_atmosphere_table(const std::string& path, std::vector<double>& 
   return {};
 }
 
+Status trim_data_from_aero(const config::AeroModel& aero, TrimAeroData& d) {
+  const std::size_t na = aero.cl.alpha_rad.size(), nm = aero.cl.mach.size(), nodes = na * nm;
+  if (na > TrimAeroData::kMaxAlpha || nm > TrimAeroData::kMaxMach || nodes > TrimSurfaceData::kMaxNodes) {
+    return Status::kCapacityExceeded;
+  }
+  auto same_grid = [&](const config::Table2D& t) {
+    return t.alpha_rad == aero.cl.alpha_rad && t.mach == aero.cl.mach && t.values.size() == nodes;
+  };
+  if (!same_grid(aero.cl) || !same_grid(aero.cd) || !same_grid(aero.cm)) return Status::kInvalidInput;
+  d.n_alpha = static_cast<int>(na);
+  d.n_mach = static_cast<int>(nm);
+  std::memcpy(d.alpha_rad, aero.cl.alpha_rad.data(), sizeof(double) * na);
+  std::memcpy(d.mach, aero.cl.mach.data(), sizeof(double) * nm);
+  std::memcpy(d.cl, aero.cl.values.data(), sizeof(double) * nodes);
+  std::memcpy(d.cd, aero.cd.values.data(), sizeof(double) * nodes);
+  std::memcpy(d.cm, aero.cm.values.data(), sizeof(double) * nodes);
+  d.n_surfaces = 0;
+  for (const char* name : {"body_flap", "elevon"}) {
+    for (const config::ControlSurface& cs : aero.surfaces) {
+      if (cs.name != name) continue;
+      const std::size_t nd = cs.deflection_rad.size();
+      if (nd > TrimSurfaceData::kMaxDeflections) return Status::kCapacityExceeded;
+      if (cs.dcl.size() != nd || cs.dcd.size() != nd || cs.dcm.size() != nd) return Status::kInvalidInput;
+      TrimSurfaceData& s = d.surface[d.n_surfaces++];
+      s.count = cs.count;
+      s.min_rad = cs.min_rad;
+      s.max_rad = cs.max_rad;
+      s.n_deflections = static_cast<int>(nd);
+      for (std::size_t k = 0; k < nd; ++k) {
+        if (!same_grid(cs.dcl[k]) || !same_grid(cs.dcd[k]) || !same_grid(cs.dcm[k])) return Status::kInvalidInput;
+        s.deflection_rad[k] = cs.deflection_rad[k];
+        std::memcpy(s.dcl[k], cs.dcl[k].values.data(), sizeof(double) * nodes);
+        std::memcpy(s.dcd[k], cs.dcd[k].values.data(), sizeof(double) * nodes);
+        std::memcpy(s.dcm[k], cs.dcm[k].values.data(), sizeof(double) * nodes);
+      }
+      break;  // the first surface of each kind trims (as in the truth model)
+    }
+  }
+  return d.n_surfaces > 0 ? Status::kOk : Status::kInvalidInput;
+}
 GuidanceMission to_guidance_mission(const config::Mission& m) {
   GuidanceMission g;
   const config::SphericalState& e = m.entry;
@@ -127,7 +168,10 @@ std::string guidance_params_from_mission(const config::Mission& m, GuidanceLawPa
 std::string onboard_models_from_mission(const config::Mission& m, OnboardModels& models) {
   const config::Vehicle& v = m.vehicle;
   const std::string where = m.source_file + ": vehicle '" + v.name + "'";
-  if (models.init_vehicle(v.mass_kg, v.reference_area_m2, v.nose_radius_m) != Status::kOk) {
+  const HeatFluxModel heating = v.heating_model == config::HeatingModel::kBettsLeadingEdge
+                                    ? HeatFluxModel::kBettsLeadingEdge
+                                    : HeatFluxModel::kChapmanStagnation;
+  if (models.init_vehicle(v.mass_kg, v.reference_area_m2, v.nose_radius_m, heating) != Status::kOk) {
     return where + ": mass, reference area and nose radius must be positive";
   }
   const config::AeroModel& a = v.aero;
@@ -136,8 +180,18 @@ std::string onboard_models_from_mission(const config::Mission& m, OnboardModels&
       static_cast<int>(a.cd.values.size()) != na * nm) {
     return where + ": CL and CD tables must share one (alpha, Mach) grid";
   }
-  const Status st = models.aero().init(a.cl.alpha_rad.data(), na, a.cl.mach.data(), nm, a.cl.values.data(),
-                                       a.cd.values.data());
+  // Trimmed tables where the vehicle has moment and control-surface data (thesis 3.4), solved
+  // on board at start-up by its own trim solve (onboard_trim.hpp).
+  const bool trimmed = m.guidance.onboard_trim && !a.cm.empty() && !a.surfaces.empty();
+  Status st = Status::kOk;
+  if (trimmed) {
+    auto data = std::make_unique<TrimAeroData>();  // start-up only (about 0.8 MB)
+    st = trim_data_from_aero(a, *data);
+    if (st == Status::kOk) st = models.aero().init_trimmed(*data);
+  } else {
+    st = models.aero().init(a.cl.alpha_rad.data(), na, a.cl.mach.data(), nm, a.cl.values.data(), a.cd.values.data());
+  }
+  models.set_aero_trimmed(trimmed);
   if (st == Status::kCapacityExceeded) {
     return where + ": aero table of " + std::to_string(na) + " alpha x " + std::to_string(nm) +
            " Mach values exceeds the on-board capacity " + std::to_string(OnboardAero::kMaxAlpha) + " x " +

@@ -31,6 +31,9 @@ GuidanceMission to_guidance_mission(const config::Mission& mission);
 std::string guidance_params_from_mission(const config::Mission& mission, GuidanceLawParams& params);
 /// Vehicle, aero tables and on-board atmosphere ("" or an error naming the file or table).
 std::string onboard_models_from_mission(const config::Mission& mission, OnboardModels& models);
+/// The loader's aero model as on-board trim data (start-up): the base tables and the first body
+/// flap and elevon surface, in that trim order; tables on another grid than C_L's are refused.
+Status trim_data_from_aero(const config::AeroModel& aero, TrimAeroData& data);
 std::string alpha_profile_from_mission(const config::Mission& mission, AlphaProfile& profile);
 /// All of the above. The mission's alpha profile must be resolved (see alpha_profile_source).
 std::string make_guidance_setup(const config::Mission& mission, GuidanceSetup& out);

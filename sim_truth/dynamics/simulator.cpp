@@ -86,6 +86,7 @@ struct Simulator::Models {
   numerics::RkfMethod method = numerics::RkfMethod::kRkf56;
   numerics::RkfTolerances<kStates> tol{};
   double mass_kg = 0.0, area_m2 = 0.0, nose_radius_m = 0.0;
+  config::HeatingModel heating = config::HeatingModel::kChapmanStagnation;
   double cl_scale = 1.0, cd_scale = 1.0;
   bool trim = false;
 };
@@ -218,6 +219,7 @@ std::unique_ptr<Simulator> Simulator::create(const config::Mission& mission, con
   m.mass_kg = mission.vehicle.mass_kg * disp.mass_scale;
   m.area_m2 = mission.vehicle.reference_area_m2;
   m.nose_radius_m = mission.vehicle.nose_radius_m;
+  m.heating = mission.vehicle.heating_model;
   st.mass_kg = m.mass_kg;
   if (!(m.mass_kg > 0.0) || !(m.area_m2 > 0.0) || !(m.nose_radius_m > 0.0))
     return fail("vehicle mass, reference area and nose radius must be positive");
@@ -377,7 +379,7 @@ Simulator::Derived Simulator::evaluate(double t, const State& y, bool full) cons
   }
   const Vec3 g_I = C_IR * Vec3(m.gravity->acceleration_R(r_R));  // (2.28)
   d.accel_I = g_I + d.aero_I;                                    // (2.25)
-  d.qdot = chapman_heat_flux_Wpm2(d.rho, d.airspeed, m.nose_radius_m);  // (3.5)
+  d.qdot = heat_flux_Wpm2(m.heating, d.rho, d.airspeed, d.alpha, m.nose_radius_m);  // (3.5) or Betts
 
   if (full) {
     const Vec3 v_V = C_VR * (C_RI * v_rel_I);  // north, east, down

@@ -104,6 +104,9 @@ TEST(ConfigLoad, HorusAndOrbiterMatchTables) {
   EXPECT_NEAR(o.mission.constraints.dynamic_pressure_max_Pa, 342.0 * kPsf, 1e-3);
   EXPECT_DOUBLE_EQ(o.mission.vehicle.mass_kg, 104330.0);
   EXPECT_EQ(o.mission.constraints.q_alpha_max_Pa_rad, reentry::config::kNotConstrained);
+  // The 70 BTU/(ft^2 s) limit is Betts's wing-leading-edge one (README, vehicle file).
+  EXPECT_EQ(o.mission.vehicle.heating_model, reentry::config::HeatingModel::kBettsLeadingEdge);
+  EXPECT_EQ(h.mission.vehicle.heating_model, reentry::config::HeatingModel::kChapmanStagnation);  // default
 }
 
 // Orbiter table entries equal the public data file (parsed here with a separate reader).
@@ -198,9 +201,19 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"alpha_planned_with_table", false, "[alpha_profile]\n", "[alpha_profile]\nsource = \"planned\"\n",
                 "alpha_profile.energy", "not allowed"},
         BadCase{"parse_error", false, "[guidance]", "[guidance", "parse error", "line"},
+        BadCase{"distribution_enum", false, "\ndistribution = \"gaussian\"", "\ndistribution = \"normal\"",
+                "dispersions.distribution", "\"normal\""},
+        BadCase{"distribution_override_enum", false, "entry_heading_deg = 0.5\n",
+                "entry_heading_deg = 0.5\nentry_heading_distribution = \"lognormal\"\n",
+                "dispersions.entry_heading_distribution", "\"lognormal\""},
+        BadCase{"stress_distribution_enum", false, "\ndistribution = \"uniform\"", "\ndistribution = \"flat\"",
+                "stress_dispersions.distribution", "\"flat\""},
+        BadCase{"negative_three_sigma", false, "cl_scale = 0.10", "cl_scale = -0.10", "dispersions.cl_scale", "-0.1"},
         BadCase{"wind_order", false, "wind_scale_min = 0.0", "wind_scale_min = 2.0", "dispersions.wind_scale_max", "1.5"},
         BadCase{"negative_mass", true, "mass_kg = 37650.0", "mass_kg = -1.0", "vehicle.mass_kg", "-1"},
         BadCase{"zero_area", true, "reference_area_m2 = 149.4", "reference_area_m2 = 0.0", "vehicle.reference_area_m2", "0"},
+        BadCase{"heating_enum", true, "nose_radius_m = 0.8", "nose_radius_m = 0.8\nheating_model = \"fay_riddell\"",
+                "vehicle.heating_model", "\"fay_riddell\""},
         BadCase{"zero_nose", true, "nose_radius_m = 0.8", "nose_radius_m = 0", "vehicle.nose_radius_m", "0"},
         BadCase{"ragged_row", true, "cl = [\n  [0.000000, ", "cl = [\n  [", "aero.cl[0]", "5 values"},
         BadCase{"mach_order", true, "mach = [2.010000, 3.490000", "mach = [3.490000, 2.010000", "aero.mach[1]", "2.01"},
@@ -215,6 +228,33 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"aero_alpha_over_64_rows", true, "alpha_deg = [0.000000,", kSeventyAlphas, "aero.alpha_deg",
                 "has 125 values; the on-board aerodynamic table holds at most 64"}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return std::string(info.param.label); });
+
+TEST(ConfigLoad, DispersionSetsAreGaussianReferenceAndUniformStress) {
+  const LoadResult r = load_mission("x33");
+  ASSERT_TRUE(r.ok) << r.error;
+  const auto& ref = r.mission.dispersions;
+  ASSERT_TRUE(r.mission.has_stress_dispersions);
+  const auto& stress = r.mission.stress_dispersions;
+  using reentry::config::Distribution;
+  EXPECT_EQ(ref.entry_flight_path_rad.distribution, Distribution::kGaussian);
+  EXPECT_NEAR(ref.entry_flight_path_rad.value, 0.2 * kDeg, 1e-15);  // 3 sigma
+  EXPECT_EQ(ref.wind_scale_distribution, Distribution::kGaussian);
+  EXPECT_EQ(stress.entry_flight_path_rad.distribution, Distribution::kUniform);
+  EXPECT_NEAR(stress.entry_flight_path_rad.value, 0.2 * kDeg, 1e-15);  // half-width
+  EXPECT_EQ(stress.cd_scale.distribution, Distribution::kUniform);
+  EXPECT_EQ(stress.wind_scale_distribution, Distribution::kUniform);
+  EXPECT_DOUBLE_EQ(stress.wind_scale_max, 1.5);
+  // A quantity's own distribution overrides the section's.
+  TempMission t;
+  const std::string from = "entry_heading_deg = 0.5\n";
+  const size_t at = t.mission().find(from);
+  ASSERT_NE(at, std::string::npos);
+  t.mission().insert(at + from.size(), "entry_heading_distribution = \"uniform\"\n");
+  const LoadResult o = t.load();
+  ASSERT_TRUE(o.ok) << o.error;
+  EXPECT_EQ(o.mission.dispersions.entry_heading_rad.distribution, Distribution::kUniform);
+  EXPECT_EQ(o.mission.dispersions.entry_velocity_mps.distribution, Distribution::kGaussian);
+}
 
 TEST(ConfigLoad, PlannedAlphaProfileNeedsNoTable) {
   const LoadResult r = load_mission("x33_planned_alpha");

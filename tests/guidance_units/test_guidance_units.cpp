@@ -569,7 +569,7 @@ double heat_limit_for_drag_bound(const OnboardModels& models, const RelativeStat
                                  double drag_bound_mps2) {
   const double cd = models.drag_coefficient(alpha_rad, s.energy_Jpkg, s.altitude_m);
   const double q = s.drag_mps2 / (cd * models.area_over_mass());
-  const double heat = models.heat_flux_Wpm2(2.0 * q / (s.velocity_mps * s.velocity_mps), s.velocity_mps);
+  const double heat = models.heat_flux_Wpm2(2.0 * q / (s.velocity_mps * s.velocity_mps), s.velocity_mps, alpha_rad);
   return heat * std::sqrt(drag_bound_mps2 / s.drag_mps2) / 0.97;
 }
 // Drag at the bottom of the pull-out from s, independently of the tracker's closed form:

@@ -620,13 +620,46 @@ TEST(EntryPlanner, CorridorFloorCarriesTheEarthRateTerm) {
   EXPECT_GT(checked, 5);
 }
 
-TEST(EntryPlanner, OrbiterMissionRangeIsShorterThanItsHeatLimitedMinimum) {
-  // Table 3.3 as we read it: 6534 km from entry to TAEM, but flying the heat-flux limit
-  // (Chapman, 0.3 m nose, 70 BTU/ft^2/s) all the way takes about 9200 km. No length fits: the
-  // planner reports range_too_long and hands out the maximum-drag profile as the best effort
-  // (the drag on the corridor maximum wherever the level is above it).
+namespace {
+// int dE / D_max over the planner's grid (trapezoid in 1/D): the range of the maximum-drag
+// profile, independent of the fit.
+double maximum_drag_range_m(const EntryPlanner& planner) {
+  double range_m = 0.0;
+  for (int k = 0; k + 1 < EntryPlanner::kGrid; ++k) {
+    const double de = planner.grid_energy(k) - planner.grid_energy(k + 1);
+    range_m += 0.5 * de * (1.0 / planner.corridor_max(k) + 1.0 / planner.corridor_max(k + 1));
+  }
+  return range_m;
+}
+}  // namespace
+
+TEST(EntryPlanner, OrbiterRangeLiesInsideItsLeadingEdgeHeatLimitedFootprint) {
+  // Table 3.3's 70 BTU/(ft^2 s) bounds Betts's wing-leading-edge heating (the vehicle file's
+  // heating_model): the maximum-drag profile flies well short of the 6541 km to Kennedy, and
+  // the plan from the entry interface converges onto the TAEM point.
   config::LoadResult loaded = config::load_mission("orbiter");
   ASSERT_TRUE(loaded.ok) << loaded.error;
+  ASSERT_EQ(loaded.mission.vehicle.heating_model, config::HeatingModel::kBettsLeadingEdge);
+  auto planner = std::make_unique<EntryPlanner>();
+  auto out = std::make_unique<ReferenceProfile>();
+  ASSERT_EQ(init_from_mission(*planner, loaded.mission), Status::kOk);
+  const RelativeState entry = planner->entry_state();
+  EXPECT_EQ(planner->plan(entry, *out), Status::kOk);
+  EXPECT_TRUE(out->converged);
+  const double desired_m = planner->diagnostics().s_initial_m;
+  EXPECT_LT(maximum_drag_range_m(*planner), 0.8 * desired_m);
+  for (int k = 0; k < out->n_points; ++k) EXPECT_LE(out->drag_mps2[k], planner->corridor_max(k) * (1.0 + 1e-12)) << k;
+  EXPECT_LT(ground_track_miss_km(*out, entry, loaded.mission), 5.0);
+}
+
+TEST(EntryPlanner, OrbiterReadWithAStagnationPointHeatLimitIsInfeasible) {
+  // The same mission with the limit applied to Chapman's stagnation point (3.5) at the 0.3 m
+  // nose: flying the heat-flux limit all the way takes about 9200 km against 6534 km. No length
+  // fits: the planner reports range_too_long and hands out the maximum-drag profile as the best
+  // effort (the drag on the corridor maximum wherever the level is above it).
+  config::LoadResult loaded = config::load_mission("orbiter");
+  ASSERT_TRUE(loaded.ok) << loaded.error;
+  loaded.mission.vehicle.heating_model = config::HeatingModel::kChapmanStagnation;
   auto planner = std::make_unique<EntryPlanner>();
   auto out = std::make_unique<ReferenceProfile>();
   ASSERT_EQ(init_from_mission(*planner, loaded.mission), Status::kOk);
@@ -636,19 +669,14 @@ TEST(EntryPlanner, OrbiterMissionRangeIsShorterThanItsHeatLimitedMinimum) {
   EXPECT_EQ(out->status, Status::kRangeTooLong);
   EXPECT_FALSE(out->converged);
   ASSERT_EQ(out->n_points, EntryPlanner::kGrid);
-  double min_range_m = 0.0;  // int dE / D_max over the grid (trapezoid in 1/D): independent of the fit
   int on_max = 0;
-  for (int k = 0; k + 1 < EntryPlanner::kGrid; ++k) {
-    const double de = planner->grid_energy(k) - planner->grid_energy(k + 1);
-    min_range_m += 0.5 * de * (1.0 / planner->corridor_max(k) + 1.0 / planner->corridor_max(k + 1));
-  }
   for (int k = 0; k < out->n_points; ++k) {
     EXPECT_LE(out->drag_mps2[k], planner->corridor_max(k) * (1.0 + 1e-12)) << k;
     if (out->drag_mps2[k] >= planner->corridor_max(k) * (1.0 - 1e-9)) ++on_max;
   }
   EXPECT_GT(on_max, 9 * EntryPlanner::kGrid / 10);
   const double desired_m = planner->diagnostics().s_initial_m;
-  EXPECT_GT(min_range_m, 1.3 * desired_m);
+  EXPECT_GT(maximum_drag_range_m(*planner), 1.3 * desired_m);
   // The reported overshoot is the one of the flown best effort: by the independent ground
   // track, the profile ends past the TAEM point by about the same distance.
   const double overshoot_m = -planner->diagnostics().downrange_err_m;

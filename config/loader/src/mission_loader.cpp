@@ -388,6 +388,10 @@ void read_vehicle_file(const std::string& path, Vehicle& v, ErrorSink& sink) {
   v.mass_kg = vr.number("mass_kg", 0.0, 1e7, true);
   v.reference_area_m2 = vr.number("reference_area_m2", 0.0, 1e4, true);
   v.nose_radius_m = vr.number("nose_radius_m", 0.0, 100.0, true);
+  v.heating_model = vr.choice("heating_model", {"chapman_stagnation", "betts_leading_edge"}, false,
+                              "chapman_stagnation") == "betts_leading_edge"
+                        ? HeatingModel::kBettsLeadingEdge
+                        : HeatingModel::kChapmanStagnation;
   vr.finish();
 
   Reader ar = top.sub("aero");
@@ -429,6 +433,39 @@ void read_vehicle_file(const std::string& path, Vehicle& v, ErrorSink& sink) {
   }
   ar.finish();
   top.finish();
+}
+
+Distribution to_distribution(const std::string& name) {
+  return name == "uniform" ? Distribution::kUniform : Distribution::kGaussian;
+}
+
+// One campaign set: `distribution` for every quantity, `<name>_distribution` overriding it for
+// one; each quantity's number is 3 sigma (gaussian) or the half-width (uniform).
+void read_dispersions(Reader d, Dispersions& dp) {
+  const std::vector<std::string> kinds{"gaussian", "uniform"};
+  const Distribution all = to_distribution(d.choice("distribution", kinds));
+  auto quantity = [&](Dispersion& q, const std::string& name, const std::string& key, double hi, double to_si) {
+    q.value = d.number(key, 0.0, hi) * to_si;
+    q.distribution = d.has(name + "_distribution") ? to_distribution(d.choice(name + "_distribution", kinds)) : all;
+  };
+  quantity(dp.entry_flight_path_rad, "entry_flight_path", "entry_flight_path_deg", 10.0, kDegToRad);
+  quantity(dp.entry_heading_rad, "entry_heading", "entry_heading_deg", 90.0, kDegToRad);
+  quantity(dp.entry_velocity_mps, "entry_velocity", "entry_velocity_mps", 1000.0, 1.0);
+  quantity(dp.entry_position_rad, "entry_position", "entry_position_deg", 10.0, kDegToRad);
+  quantity(dp.density_scale, "density_scale", "density_scale", 0.99, 1.0);
+  dp.density_perturbation = d.number("density_perturbation", 0.0, 0.99);
+  dp.density_correlation_m = d.number("density_correlation_m", 0.0, 1e6, true);
+  quantity(dp.cl_scale, "cl_scale", "cl_scale", 0.99, 1.0);
+  quantity(dp.cd_scale, "cd_scale", "cd_scale", 0.99, 1.0);
+  quantity(dp.mass_scale, "mass_scale", "mass_scale", 0.99, 1.0);
+  dp.wind_scale_min = d.number("wind_scale_min", 0.0, 10.0);
+  dp.wind_scale_max = d.number("wind_scale_max", 0.0, 10.0);
+  dp.wind_scale_distribution =
+      d.has("wind_scale_distribution") ? to_distribution(d.choice("wind_scale_distribution", kinds)) : all;
+  if (!d.sink()->failed() && dp.wind_scale_max < dp.wind_scale_min)
+    d.fail("wind_scale_max", "value " + fmt_double(dp.wind_scale_max) + " below wind_scale_min " +
+                                 fmt_double(dp.wind_scale_min));
+  d.finish();
 }
 
 double specific_energy(double altitude_m, double velocity_mps) {  // (7.8)
@@ -558,6 +595,7 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
   gp.drag_profile = g.choice("drag_profile", {"three_segment", "smooth"});
   gp.initial_drag = g.choice("initial_drag", {"actual", "lmin"});
   gp.onboard_atmosphere = g.choice("onboard_atmosphere", {"exponential", "table"});
+  gp.onboard_trim = g.boolean("onboard_trim", false, true);
   gp.initial_descent_drag_mps2 = g.number("initial_descent_drag_mps2", 0.0, 100.0);
   // The planner's and tracker's tunables ([guidance] numbers not read above, [guidance.planner],
   // [guidance.tracker]) are validated by the flight software's parameter lists.
@@ -581,24 +619,9 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
   sp.time_limit_s = s.number("time_limit_s", 0.0, 1e6, true);
   s.finish();
 
-  Reader d = top.sub("dispersions");
-  Dispersions& dp = m.dispersions;
-  dp.entry_flight_path_rad = d.number("entry_flight_path_deg", 0.0, 10.0) * kDegToRad;
-  dp.entry_heading_rad = d.number("entry_heading_deg", 0.0, 90.0) * kDegToRad;
-  dp.entry_velocity_mps = d.number("entry_velocity_mps", 0.0, 1000.0);
-  dp.entry_position_rad = d.number("entry_position_deg", 0.0, 10.0) * kDegToRad;
-  dp.density_scale = d.number("density_scale", 0.0, 0.99);
-  dp.density_perturbation = d.number("density_perturbation", 0.0, 0.99);
-  dp.density_correlation_m = d.number("density_correlation_m", 0.0, 1e6, true);
-  dp.cl_scale = d.number("cl_scale", 0.0, 0.99);
-  dp.cd_scale = d.number("cd_scale", 0.0, 0.99);
-  dp.mass_scale = d.number("mass_scale", 0.0, 0.99);
-  dp.wind_scale_min = d.number("wind_scale_min", 0.0, 10.0);
-  dp.wind_scale_max = d.number("wind_scale_max", 0.0, 10.0);
-  if (!sink.failed() && dp.wind_scale_max < dp.wind_scale_min)
-    d.fail("wind_scale_max", "value " + fmt_double(dp.wind_scale_max) + " below wind_scale_min " +
-                                 fmt_double(dp.wind_scale_min));
-  d.finish();
+  read_dispersions(top.sub("dispersions"), m.dispersions);
+  m.has_stress_dispersions = top.has("stress_dispersions");
+  if (m.has_stress_dispersions) read_dispersions(top.sub("stress_dispersions"), m.stress_dispersions);
 
   Reader env = top.sub("environment");
   auto env_file = [&](const char* key) {

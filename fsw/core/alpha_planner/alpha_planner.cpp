@@ -141,14 +141,15 @@ Status AlphaPlanner::glide_height(double velocity_mps, const AlphaLaw& law, doub
   return min_height(excess, h_m);
 }
 
-Status AlphaPlanner::heat_flux_height(double velocity_mps, double& h_m) const {
+Status AlphaPlanner::heat_flux_height(double velocity_mps, const AlphaLaw& law, double& h_m) const {
   if (!initialised_ || !(velocity_mps > 0.0)) return Status::kInvalidInput;
   if (!std::isfinite(heat_flux_max_Wpm2_)) {
     h_m = kMinHeight_m;
     return Status::kOk;
   }
-  auto excess = [&](double h) {  // (6.2) in log form: ln q(h) - ln q_max
-    return std::log(models_.heat_flux_Wpm2(models_.atmosphere().density_kgpm3(h), velocity_mps)) -
+  auto excess = [&](double h) {  // (6.2) in log form: ln q(h) - ln q_max (alpha: leading-edge models)
+    const double alpha = alpha_of(law, models_.mach(h, velocity_mps));
+    return std::log(models_.heat_flux_Wpm2(models_.atmosphere().density_kgpm3(h), velocity_mps, alpha)) -
            std::log(heat_flux_max_Wpm2_);
   };
   return min_height(excess, h_m);
@@ -269,7 +270,7 @@ Status AlphaPlanner::build_corridor(const AlphaLaw& law_ranging, double* h_rangi
     Status s = glide_height(v, law_cl, p.h_glide_cl_max_m);
     if (s == Status::kOk) s = glide_height(v, law_ld, p.h_glide_ld_max_m);
     if (s == Status::kOk) s = glide_height(v, law_ranging, h_ranging_m[i]);
-    if (s == Status::kOk) s = heat_flux_height(v, p.h_heat_flux_m);
+    if (s == Status::kOk) s = heat_flux_height(v, law_ld, p.h_heat_flux_m);
     if (s == Status::kOk) s = load_factor_height(v, law_cl, p.h_load_factor_cl_max_m);
     if (s == Status::kOk) s = load_factor_height(v, law_ld, p.h_load_factor_ld_max_m);
     if (s == Status::kOk) s = q_alpha_height(v, law_cl, p.h_q_alpha_cl_max_m);
@@ -399,7 +400,7 @@ void AlphaPlanner::evaluate_path(AlphaPlanResult& out) const {
     const double q = 0.5 * rho * p.velocity_mps * p.velocity_mps;
     const double lift = models_.lift_mps2(p.alpha_rad, p.h_path_m, p.velocity_mps);
     const double drag = models_.drag_mps2(p.alpha_rad, p.h_path_m, p.velocity_mps);
-    p.path_heat_flux_Wpm2 = models_.heat_flux_Wpm2(rho, p.velocity_mps);  // (3.6)
+    p.path_heat_flux_Wpm2 = models_.heat_flux_Wpm2(rho, p.velocity_mps, p.alpha_rad);  // (3.6)
     p.path_load_factor_g = std::sqrt(lift * lift + drag * drag) / kG0_mps2;
     p.path_q_alpha_Pa_rad = q * p.alpha_rad;
     p.path_dynamic_pressure_Pa = q;

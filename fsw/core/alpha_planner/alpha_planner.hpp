@@ -117,7 +117,9 @@ class AlphaPlanner {
   double alpha_of(const AlphaLaw& law, double mach) const;
 
   Status glide_height(double velocity_mps, const AlphaLaw& law, double& h_m) const;        // (6.6)
-  Status heat_flux_height(double velocity_mps, double& h_m) const;                          // (6.2)
+  /// law: the alpha where the heat flux depends on it (leading-edge model); the corridor uses
+  /// the alpha(L/D max) law, as for its other lower-boundary constraints.
+  Status heat_flux_height(double velocity_mps, const AlphaLaw& law, double& h_m) const;      // (6.2)
   Status load_factor_height(double velocity_mps, const AlphaLaw& law, double& h_m) const;   // (6.7)
   Status q_alpha_height(double velocity_mps, const AlphaLaw& law, double& h_m) const;       // (6.8)
   Status dynamic_pressure_height(double velocity_mps, double& h_m) const;                   // (6.5)

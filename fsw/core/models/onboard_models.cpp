@@ -139,6 +139,14 @@ Status OnboardAero::init(const double* alpha_rad, int n_alpha, const double* mac
   return Status::kOk;
 }
 
+Status OnboardAero::init_trimmed(const TrimAeroData& data) {
+  double cl[TrimSurfaceData::kMaxNodes];
+  double cd[TrimSurfaceData::kMaxNodes];
+  const Status s = solve_trimmed_coefficients(data, cl, cd);
+  if (s != Status::kOk) return s;
+  return init(data.alpha_rad, data.n_alpha, data.mach, data.n_mach, cl, cd);
+}
+
 double OnboardAero::interpolate(const double* table, double alpha_rad, double mach) const {
   return numerics::bilinear(alpha_rad_, n_alpha_, mach_, n_mach_, table, alpha_rad, mach, &hint_alpha_,
                             &hint_mach_);  // clamped at the edges
@@ -169,21 +177,38 @@ double AlphaProfile::alpha_rad(double e_norm) const {
 }
 
 // ---------------------------------------------------------------- aggregate
-void OnboardModels::set_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m) {
+void OnboardModels::set_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m, HeatFluxModel heating) {
   mass_kg_ = mass_kg;
   area_over_mass_m2pkg_ = reference_area_m2 / mass_kg;
   nose_radius_m_ = nose_radius_m;
-  // C of (3.6) from (3.5): c1 / (sqrt(RN) sqrt(rho0) Vc^c2), Vc = sqrt(mu / R).
-  const double vc = std::sqrt(kMuEarth_m3ps2 / kEarthRadius_m);
-  heat_constant_ = kHeatC1 / (std::sqrt(nose_radius_m_) * std::sqrt(OnboardAtmosphere::kRho0_kgpm3) * std::pow(vc, kHeatC2));
+  heating_ = heating;
+  if (heating == HeatFluxModel::kBettsLeadingEdge) {
+    // Betts's fit q[BTU/(ft^2 s)] = qa(alpha) 17700 sqrt(rho[slug/ft^3]) (1e-4 v[ft/s])^3.07 with
+    // the unit conversions folded into K: q[W/m^2] = qa(alpha) K sqrt(rho[kg/m^3]) V[m/s]^3.07.
+    constexpr double kFoot_m = 0.3048;
+    constexpr double kSlug_kg = 14.59390293720636;
+    constexpr double kBtu_J = 1055.05585262;
+    const double btu_per_ft2s_in_Wpm2 = kBtu_J / (kFoot_m * kFoot_m);
+    const double slug_per_ft3_in_kgpm3 = kSlug_kg / (kFoot_m * kFoot_m * kFoot_m);
+    heat_exponent_ = kBettsHeatC2;
+    heat_constant_ = btu_per_ft2s_in_Wpm2 * 17700.0 / std::sqrt(slug_per_ft3_in_kgpm3) *
+                     std::pow(1e-4 / kFoot_m, kBettsHeatC2);
+  } else {
+    // C of (3.6) from (3.5): c1 / (sqrt(RN) sqrt(rho0) Vc^c2), Vc = sqrt(mu / R).
+    const double vc = std::sqrt(kMuEarth_m3ps2 / kEarthRadius_m);
+    heat_exponent_ = kHeatC2;
+    heat_constant_ =
+        kHeatC1 / (std::sqrt(nose_radius_m_) * std::sqrt(OnboardAtmosphere::kRho0_kgpm3) * std::pow(vc, kHeatC2));
+  }
 }
 
-Status OnboardModels::init_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m) {
+Status OnboardModels::init_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m,
+                                   HeatFluxModel heating) {
   if (!(mass_kg > 0.0) || !(reference_area_m2 > 0.0) || !(nose_radius_m > 0.0) || !std::isfinite(mass_kg) ||
       !std::isfinite(reference_area_m2) || !std::isfinite(nose_radius_m)) {
     return Status::kInvalidInput;
   }
-  set_vehicle(mass_kg, reference_area_m2, nose_radius_m);
+  set_vehicle(mass_kg, reference_area_m2, nose_radius_m, heating);
   return Status::kOk;
 }
 
@@ -242,8 +267,17 @@ double OnboardModels::dlnrho_dr_fd(double altitude_m, double step_m) const {
          (2.0 * step_m);
 }
 
-double OnboardModels::heat_flux_Wpm2(double density_kgpm3, double velocity_mps) const {
-  return heat_constant_ * std::sqrt(density_kgpm3) * std::pow(velocity_mps, kHeatC2);  // (3.6)
+double OnboardModels::heat_flux_coefficient(double alpha_rad) const {
+  if (heating_ == HeatFluxModel::kChapmanStagnation) return heat_constant_;  // (3.6)
+  // Betts's alpha factor qa, alpha in degrees as published (Betts 2010, 6.1).
+  constexpr double kDegPerRad = 57.29577951308232;
+  const double a = alpha_rad * kDegPerRad;
+  const double qa = ((-1.0117249e-6 * a + 2.1286289e-4) * a - 1.9213774e-2) * a + 1.0672181;
+  return qa * heat_constant_;
+}
+
+double OnboardModels::heat_flux_Wpm2(double density_kgpm3, double velocity_mps, double alpha_rad) const {
+  return heat_flux_coefficient(alpha_rad) * std::sqrt(density_kgpm3) * std::pow(velocity_mps, heat_exponent_);  // (3.6)
 }
 
 }  // namespace reentry::fsw

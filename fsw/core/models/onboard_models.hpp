@@ -9,6 +9,7 @@
 
 #include "guidance_types.hpp"
 #include "mission_data.hpp"
+#include "models/onboard_trim.hpp"
 
 namespace reentry::fsw {
 
@@ -77,12 +78,15 @@ class OnboardAtmosphere {
   double temperature_K_[kCapacity] = {};
 };
 
-/// Basic (untrimmed) CL and CD over (alpha, Mach), bilinear, clamped at the table edges.
+/// CL and CD over (alpha, Mach), bilinear, clamped at the table edges: the basic tables, or
+/// the trimmed ones solved at start-up (onboard_trim.hpp).
 class OnboardAero {
  public:
   static constexpr int kMaxAlpha = 64;
   static constexpr int kMaxMach = 64;
 
+  /// Trimmed C_L, C_D on the data's grid (solve_trimmed_coefficients). Start-up only.
+  Status init_trimmed(const TrimAeroData& data);
   /// Tables over (alpha, Mach), row-major: values[i_alpha * n_mach + i_mach].
   Status init(const double* alpha_rad, int n_alpha, const double* mach, int n_mach,
               const double* cl, const double* cd);
@@ -123,19 +127,31 @@ class AlphaProfile {
   double alpha_rad_[kCapacity] = {};
 };
 
+/// Heat-flux model of the constrained point, q = C(alpha) sqrt(rho) V^c2 in both cases.
+enum class HeatFluxModel {
+  kChapmanStagnation,  // (3.5)/(3.6): C = c1 / (sqrt(RN) sqrt(rho0) Vc^c2), c2 = 3
+  kBettsLeadingEdge,   // Betts 2010 (6.1) Shuttle wing leading edge: C = qa(alpha) K, c2 = 3.07
+};
+
 /// Everything the planner needs about the vehicle and its environment.
 class OnboardModels {
  public:
   /// Vehicle mass, reference area and nose radius (all > 0); the atmosphere and the aero
   /// tables are initialised through atmosphere() and aero().
-  Status init_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m);
+  Status init_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m,
+                      HeatFluxModel heating = HeatFluxModel::kChapmanStagnation);
 
   const OnboardAtmosphere& atmosphere() const { return atmosphere_; }
   const OnboardAero& aero() const { return aero_; }
   OnboardAtmosphere& atmosphere() { return atmosphere_; }
   OnboardAero& aero() { return aero_; }
 
-  void set_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m);
+  /// Mass, area and the heat-flux model (nose_radius_m is used by kChapmanStagnation only).
+  void set_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m,
+                   HeatFluxModel heating = HeatFluxModel::kChapmanStagnation);
+  /// The aero tables are the start-up trim solution (moment and surface data, guidance.onboard_trim).
+  bool aero_trimmed() const { return aero_trimmed_; }
+  void set_aero_trimmed(bool trimmed) { aero_trimmed_ = trimmed; }
   double mass_kg() const { return mass_kg_; }
   double area_over_mass() const { return area_over_mass_m2pkg_; }
 
@@ -160,11 +176,16 @@ class OnboardModels {
                                 double energy_b_Jpkg, double altitude_b_m) const;
   /// (1/rho) d rho / dr by a central difference of ln rho over +-step_m (7.14-7.16).
   double dlnrho_dr_fd(double altitude_m, double step_m) const;
-  /// Convective stagnation heat flux (3.5): c1/sqrt(RN) sqrt(rho/rho0) (V/Vc)^c2.
-  double heat_flux_Wpm2(double density_kgpm3, double velocity_mps) const;
-  /// C of (3.6): q = C sqrt(rho) V^c2.
-  double heat_flux_constant() const { return heat_constant_; }
-  static constexpr double kHeatC1 = 1.06584e8;
+  /// Heat flux of the vehicle's model, q = C(alpha) sqrt(rho) V^c2: Chapman stagnation point
+  /// (3.5)/(3.6), c1/sqrt(RN) sqrt(rho/rho0) (V/Vc)^3, alpha-free; or Betts's leading edge.
+  double heat_flux_Wpm2(double density_kgpm3, double velocity_mps, double alpha_rad) const;
+  /// C(alpha) of q = C sqrt(rho) V^c2, SI (W/m^2 per sqrt(kg/m^3) (m/s)^c2).
+  double heat_flux_coefficient(double alpha_rad) const;
+  /// c2 of q = C sqrt(rho) V^c2.
+  double heat_flux_velocity_exponent() const { return heat_exponent_; }
+  HeatFluxModel heat_flux_model() const { return heating_; }
+  static constexpr double kHeatC1 = 1.06584e8;  // (3.5), W/m^(3/2)
+  static constexpr double kBettsHeatC2 = 3.07;  // Betts 2010, 6.1
   static constexpr double kHeatC2 = 3.0;
 
  private:
@@ -173,7 +194,10 @@ class OnboardModels {
   double mass_kg_ = 1.0;
   double area_over_mass_m2pkg_ = 0.0;
   double nose_radius_m_ = 1.0;
-  double heat_constant_ = 0.0;
+  HeatFluxModel heating_ = HeatFluxModel::kChapmanStagnation;
+  double heat_constant_ = 0.0;  // Chapman: C; Betts: K, C = qa(alpha) K
+  double heat_exponent_ = kHeatC2;
+  bool aero_trimmed_ = false;
 };
 
 }  // namespace reentry::fsw

@@ -77,6 +77,7 @@ Status EntryPlanner::init(const OnboardModels& models, const AlphaProfile& alpha
     return Status::kInvalidInput;
   }
   ranging_blend_min_ = 0.0;
+  flown_side_known_ = false;
   initialised_ = true;
   return Status::kOk;
 }
@@ -151,8 +152,7 @@ Status EntryPlanner::equilibrium_glide_radius() {
 
 void EntryPlanner::corridor() {
   const double s_over_m = models_.area_over_mass();
-  const double c_heat = models_.heat_flux_constant();
-  const double two_c2m2 = 2.0 * (OnboardModels::kHeatC2 - 1.0);
+  const double two_c2m2 = 2.0 * (models_.heat_flux_velocity_exponent() - 1.0);
   const double span = e0_ - taem_energy_;
   for (int k = 0; k < kGrid; ++k) {
     const double r = r_[k];
@@ -162,6 +162,7 @@ void EntryPlanner::corridor() {
     double cl, cd;
     models_.aero().coefficients(alpha_[k], models_.mach(h, v), cl, cd);
     const double alpha = alpha_[k];
+    const double c_heat = models_.heat_flux_coefficient(alpha);  // q = C(alpha) sqrt(rho) V^c2
     d_heat_[k] = (heat_max_ * heat_max_ * cd * s_over_m) / (2.0 * c_heat * c_heat * std::pow(v, two_c2m2));  // (7.3)
     d_qalpha_[k] = alpha > 1e-6 ? q_alpha_max_ * cd * s_over_m / alpha : kUnconstrained;         // (7.4)
     const double d_load = n_max_ / (cl / cd * std::cos(alpha) + std::sin(alpha));                           // (7.5)
@@ -712,7 +713,16 @@ Status EntryPlanner::set_planning_state() {
   diag_.b_mission_rad = gc.arc_rad;
   diag_.a_mission_rad = gc.azimuth_rad;
   diag_.chi_minus_a_rad = wrap_pi(from_.heading_rad - a_mission_);
+  // First bank side: the quadrant rule (fig. 7.20) at the first plan. A replan keeps the side
+  // the last plan flies at the planning energy (reversal search tries the other side only
+  // when no single reversal nulls the crossrange with it): the heading offset crosses zero
+  // while the first bank turns the vehicle towards the target, and re-applying the rule there
+  // reverses the bank for nothing (with a slow roll at high speed, a roll through wings level
+  // of a minute or more and a phugoid).
   sign0_ = initial_bank_sign(from_.heading_rad, a_mission_);
+  if (flown_side_known_ && from_.energy_Jpkg > e_corridor_) {
+    sign0_ = from_.energy_Jpkg > flown_e_rev_ ? flown_sign0_ : -flown_sign0_;
+  }
   diag_.initial_bank_sign = sign0_;
   r_mean_ = 0.5 * (from_.radius_m + taem_radius_);
   diag_.s_initial_m = gc.arc_rad * r_mean_;  // R_d, the first length S0 (7.22)
@@ -802,6 +812,11 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   diag_.status = too_long ? Status::kRangeTooLong : (converged ? Status::kOk : Status::kNotConverged);
   fill_output(out);
   if (converged) ranging_blend_min_ = diag_.ranging_blend;
+  if (diag_.status == Status::kOk || too_long) {  // the plans the tracker flies
+    flown_side_known_ = true;
+    flown_sign0_ = sign0_;
+    flown_e_rev_ = e_rev_;
+  }
   return diag_.status;
 }
 

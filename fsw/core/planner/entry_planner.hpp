@@ -131,6 +131,11 @@ class EntryPlanner {
   bool level_at_max_ = false;         // fit: the length is below the shortest profile's (maximum level)
   mutable int range_hint_ = -1;       // last cell of energy_at_range (search hint only)
   double ranging_blend_min_ = 0.0;  // blend of the last converged plan (never decreases in flight)
+  // Bank side of the last plan handed out (first sign and reversal energy): a replan keeps the
+  // side being flown (see plan()).
+  bool flown_side_known_ = false;
+  int flown_sign0_ = 1;
+  double flown_e_rev_ = 0.0;
   double sigma_rate_max_ = 0.0;
   bool initialised_ = false;
 

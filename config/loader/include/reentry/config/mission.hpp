@@ -53,11 +53,18 @@ struct AeroModel {
   OutOfRangePolicy out_of_range = OutOfRangePolicy::kClamp;
 };
 
+/// Heat-flux model of the point whose limit the mission constrains (`vehicle.heating_model`).
+enum class HeatingModel {
+  kChapmanStagnation,  // "chapman_stagnation": stagnation point at the nose radius (thesis 3.5)
+  kBettsLeadingEdge,   // "betts_leading_edge": Shuttle wing leading edge, alpha dependent (Betts 2010, 6.1)
+};
+
 struct Vehicle {
   std::string name;
   double mass_kg = 0.0;
   double reference_area_m2 = 0.0;
-  double nose_radius_m = 0.0;
+  double nose_radius_m = 0.0;     // used by chapman_stagnation
+  HeatingModel heating_model = HeatingModel::kChapmanStagnation;
   AeroModel aero;
 };
 
@@ -119,6 +126,7 @@ struct GuidanceParams {
   std::string drag_profile = "smooth";   // "three_segment" (thesis 7.2) or "smooth"
   std::string initial_drag = "actual";   // "actual" or "lmin" (thesis 7.6)
   std::string onboard_atmosphere = "exponential";  // "exponential" or "table"
+  bool onboard_trim = true;              // trimmed on-board aero tables where moment data exist
   double initial_descent_drag_mps2 = 0.05 * 9.80665;  // hold attitude until sensed drag exceeds this
   std::vector<TuningValue> tuning;       // planner / tracker tunables, in file order of their tables
 };
@@ -139,20 +147,35 @@ struct SimParams {
   double time_limit_s = 4000.0;
 };
 
-/// Half-widths of uniform dispersions (Monte Carlo), SI.
+/// Distribution of one dispersed quantity (`distribution`, `<quantity>_distribution`).
+enum class Distribution {
+  kGaussian,  // "gaussian": the number is 3 sigma; draws are truncated at 3 sigma
+  kUniform,   // "uniform": the number is the half-width
+};
+
+/// One dispersed quantity: offsets and scale factors are centred on the nominal value.
+struct Dispersion {
+  double value = 0.0;  // 3 sigma (gaussian) or half-width (uniform), SI
+  Distribution distribution = Distribution::kGaussian;
+};
+
+/// Monte Carlo dispersions of one campaign set ([dispersions] or [stress_dispersions]), SI.
 struct Dispersions {
-  double entry_flight_path_rad = 0.0;
-  double entry_heading_rad = 0.0;
-  double entry_velocity_mps = 0.0;
-  double entry_position_rad = 0.0;       // lat/lon
-  double density_scale = 0.0;            // +-fraction
-  double density_perturbation = 0.0;     // amplitude of the altitude-correlated part
+  Dispersion entry_flight_path_rad;
+  Dispersion entry_heading_rad;
+  Dispersion entry_velocity_mps;
+  Dispersion entry_position_rad;         // lat/lon
+  Dispersion density_scale;              // fraction
+  double density_perturbation = 0.0;     // amplitude of the altitude-correlated part (a random shape)
   double density_correlation_m = 10000.0;
-  double cl_scale = 0.0;
-  double cd_scale = 0.0;
-  double mass_scale = 0.0;
+  Dispersion cl_scale;
+  Dispersion cd_scale;
+  Dispersion mass_scale;
+  // Wind profile scale over [min, max]: uniform over it, or gaussian about its centre with
+  // 3 sigma at its ends.
   double wind_scale_min = 1.0;
   double wind_scale_max = 1.0;
+  Distribution wind_scale_distribution = Distribution::kGaussian;
 };
 
 /// Environment data files (paths resolved relative to the mission file).
@@ -176,7 +199,10 @@ struct Mission {
   bool alpha_profile_planned = false;
   GuidanceParams guidance;
   SimParams sim;
-  Dispersions dispersions;
+  Dispersions dispersions;               // reference campaigns (and seeded SIL runs)
+  // [stress_dispersions]: a second, named set (tools/mc --dispersions stress); optional.
+  bool has_stress_dispersions = false;
+  Dispersions stress_dispersions;
   EnvironmentData environment;
 };
 
