@@ -359,12 +359,12 @@ int GuidanceNode::run_live(transport::UdpmSocket& net, RunMode mode, const LiveO
   }
 }
 
-int GuidanceNode::run_replay(const std::string& log_path, bool compare, const std::string& out_log,
-                             bool allow_unsealed) {
-  mode_ = RunMode::kReplay;
-  net_ = nullptr;
-  // Ground-side replay: containers are fine here (not the flight loop).
-  transport::RunLogCheck check;
+namespace {
+
+/// Reads and judges a log for replay (ground side: containers are fine here). kExitOk when it
+/// can be replayed, else the exit status, with the reason printed.
+int check_replay_log(const std::string& log_path, bool compare, bool allow_unsealed, transport::RunLogCheck& check,
+                     transport::RunCompleteness& run) {
   std::string channel;
   const transport::LogFraming fr = transport::read_event_log(log_path, [&](const transport::LogEventView& ev) {
     channel.assign(ev.channel, static_cast<std::size_t>(ev.channel_len));
@@ -381,7 +381,7 @@ int GuidanceNode::run_replay(const std::string& log_path, bool compare, const st
   }
   // Lockstep replay needs every tick from the entry interface on, an answer to each, and the
   // end of the run: a log without them cannot reproduce the run and is named, never compared.
-  const transport::RunCompleteness run = check.result(compare);
+  run = check.result(compare);
   if (run.damaged()) {
     std::printf("damaged log: %s\n", run.problem().c_str());
     return kExitLogDamaged;
@@ -399,7 +399,42 @@ int GuidanceNode::run_replay(const std::string& log_path, bool compare, const st
     std::printf("incomplete log: its writer dropped %lld records\n", static_cast<long long>(fr.seal_dropped));
     return kExitLogIncomplete;
   }
+  return kExitOk;
+}
 
+/// The first command field that differs between the replayed and the logged command (bit for
+/// bit for the doubles), or nullptr.
+const char* first_differing_field(const guidance_cmd_t& c, const guidance_cmd_t& r, double& a, double& b) {
+  const struct {
+    const char* name;
+    double replayed, logged;
+    bool differs;
+  } fields[] = {
+      {"alpha_rad", c.alpha_rad, r.alpha_rad, !same_bits(c.alpha_rad, r.alpha_rad)},
+      {"sigma_rad", c.sigma_rad, r.sigma_rad, !same_bits(c.sigma_rad, r.sigma_rad)},
+      {"beta_rad", c.beta_rad, r.beta_rad, !same_bits(c.beta_rad, r.beta_rad)},
+      {"mode", static_cast<double>(c.mode), static_cast<double>(r.mode), c.mode != r.mode},
+      {"plan_seq", static_cast<double>(c.plan_seq), static_cast<double>(r.plan_seq), c.plan_seq != r.plan_seq},
+  };
+  for (const auto& f : fields) {
+    if (!f.differs) continue;
+    a = f.replayed;
+    b = f.logged;
+    return f.name;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+int GuidanceNode::run_replay(const std::string& log_path, bool compare, const std::string& out_log,
+                             bool allow_unsealed) {
+  mode_ = RunMode::kReplay;
+  net_ = nullptr;
+  transport::RunLogCheck check;
+  transport::RunCompleteness run;
+  const int verdict = check_replay_log(log_path, compare, allow_unsealed, check, run);
+  if (verdict != kExitOk) return verdict;
   std::string err;
   if (!out_log.empty() && !open_log(out_log, RunMode::kReplay, err)) {
     std::fprintf(stderr, "reentry_fsw: %s\n", err.c_str());
@@ -415,14 +450,8 @@ int GuidanceNode::run_replay(const std::string& log_path, bool compare, const st
     if (!out.emitted) continue;
     on_cycle(out);
     if (!compare || rc_code != kExitOk) continue;
-    const guidance_cmd_t& r = logged.at(tick);
-    const char* field = nullptr;
     double a = 0.0, b = 0.0;
-    if (!same_bits(cmd_.alpha_rad, r.alpha_rad)) field = "alpha_rad", a = cmd_.alpha_rad, b = r.alpha_rad;
-    else if (!same_bits(cmd_.sigma_rad, r.sigma_rad)) field = "sigma_rad", a = cmd_.sigma_rad, b = r.sigma_rad;
-    else if (!same_bits(cmd_.beta_rad, r.beta_rad)) field = "beta_rad", a = cmd_.beta_rad, b = r.beta_rad;
-    else if (cmd_.mode != r.mode) field = "mode", a = cmd_.mode, b = r.mode;
-    else if (cmd_.plan_seq != r.plan_seq) field = "plan_seq", a = cmd_.plan_seq, b = r.plan_seq;
+    const char* field = first_differing_field(cmd_, logged.at(tick), a, b);
     if (field != nullptr) {
       std::printf("differs at tick %lld field %s (replayed %.17g, logged %.17g)\n", static_cast<long long>(tick), field,
                   a, b);
