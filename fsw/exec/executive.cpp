@@ -13,9 +13,6 @@ std::int64_t now_ns() {
       .count();
 }
 
-// Minimum spacing of drag-error replans, so a persistent error does not request every cycle.
-constexpr double kDragErrorReplanSpacing_s = 5.0;
-
 }  // namespace
 
 RelativeState predict_state(const RelativeState& s, int n_ticks, double dt_s) {
@@ -392,7 +389,7 @@ CycleOutput Executive::finish_cycle(const NavInput& nav, CycleOutput& out, std::
       want = true;
     } else if (has_profile_ && law.drag_ref_mps2 > 0.0 &&
                std::fabs(law.drag_err_mps2) > cfg_.replan_drag_error_frac * law.drag_ref_mps2 &&
-               s.t_s - last_request_t_s_ >= kDragErrorReplanSpacing_s) {
+               s.t_s - last_request_t_s_ >= cfg_.drag_error_replan_spacing_s) {
       want = true;
     }
     if (want) request_plan(nav.tick, s);

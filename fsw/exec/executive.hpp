@@ -96,6 +96,7 @@ struct ExecConfig {
   int plan_latency_ticks = 5;               // L (>= 1: requested after the law step of tick k)
   double replan_period_s = 50.0;
   double replan_drag_error_frac = 0.15;
+  double drag_error_replan_spacing_s = 5.0;  // least spacing of drag-error replans (a persistent error does not request every cycle)
   double initial_descent_drag_mps2 = 0.05 * 9.80665;  // replan from the captured state once sensed drag exceeds this
   double plan_wait_limit_s = 30.0;          // bound of the lockstep wait for a late plan
   double replan_floor_energy_Jpkg = 0.0;    // no new plans below this energy (terminal phase)

@@ -58,6 +58,7 @@ std::string GuidanceStack::create(const config::Mission& mission, exec::PlanMode
   config.plan_latency_ticks = m.guidance.plan_latency_ticks;
   config.replan_period_s = m.guidance.replan_period_s;
   config.replan_drag_error_frac = m.guidance.replan_drag_error_frac;
+  config.drag_error_replan_spacing_s = m.guidance.drag_error_replan_spacing_s;
   config.initial_descent_drag_mps2 = m.guidance.initial_descent_drag_mps2;
   config.replan_floor_energy_Jpkg = law->tracker.terminal_energy_Jpkg();
   config.mode = mode;

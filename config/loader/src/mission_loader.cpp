@@ -592,6 +592,7 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
   gp.plan_latency_ticks = g.integer("plan_latency_ticks", 1, 1000);  // the executive adopts at k + L, L >= 1
   gp.replan_period_s = g.number("replan_period_s", 0.0, 1e5, true);
   gp.replan_drag_error_frac = g.number("replan_drag_error_frac", 0.0, 10.0, true);
+  gp.drag_error_replan_spacing_s = g.number("drag_error_replan_spacing_s", 0.0, 1e4, false, false, 5.0);
   gp.drag_profile = g.choice("drag_profile", {"three_segment", "smooth"});
   gp.initial_drag = g.choice("initial_drag", {"actual", "lmin"});
   gp.onboard_atmosphere = g.choice("onboard_atmosphere", {"exponential", "table"});

@@ -123,6 +123,7 @@ struct GuidanceParams {
   int plan_latency_ticks = 5;            // lockstep: plan requested at k is adopted at k + L
   double replan_period_s = 50.0;
   double replan_drag_error_frac = 0.15;  // replan when |D - Dref| / Dref exceeds this
+  double drag_error_replan_spacing_s = 5.0;  // ... at most once in this time (optional key)
   std::string drag_profile = "smooth";   // "three_segment" (thesis 7.2) or "smooth"
   std::string initial_drag = "actual";   // "actual" or "lmin" (thesis 7.6)
   std::string onboard_atmosphere = "exponential";  // "exponential" or "table"
