@@ -120,17 +120,9 @@ Status trim_data_from_aero(const config::AeroModel& aero, TrimAeroData& d) {
 }
 GuidanceMission to_guidance_mission(const config::Mission& m) {
   GuidanceMission g;
-  const config::SphericalState& e = m.entry;
-  g.entry = EntryInterface{e.altitude_m, e.longitude_rad, e.latitude_rad, e.velocity_mps, e.flight_path_rad, e.heading_rad};
-  const config::TaemInterface& t = m.taem;
-  g.taem = TaemTarget{t.altitude_m,     t.velocity_mps,    t.longitude_rad,       t.latitude_rad,    t.heading_rad,
-                      t.range_tol_m,    t.altitude_tol_m,  t.mach_target,         t.mach_tol,        t.flight_path_rad,
-                      t.flight_path_tol_rad, t.heading_tol_rad, t.hac_radius_m};
-  const config::PathConstraints& c = m.constraints;
-  g.limits = PathLimits{c.heat_flux_max_Wpm2,    c.heat_load_max_Jpm2,    c.load_factor_max_g,
-                        c.q_alpha_max_Pa_rad,    c.dynamic_pressure_max_Pa, c.alpha_max_rad,
-                        c.alpha_rate_max_radps,  c.sigma_rate_max_radps,  c.alpha_accel_max_radps2,
-                        c.sigma_accel_max_radps2};
+  g.entry = m.entry;
+  g.taem = m.taem;
+  g.limits = m.constraints;
   return g;
 }
 

@@ -8,12 +8,14 @@
 #pragma once
 
 #include <limits>
+
+#include "mission/mission_interface.hpp"
 #include <string>
 #include <vector>
 
 namespace reentry::config {
 
-inline constexpr double kNotConstrained = std::numeric_limits<double>::infinity();
+inline constexpr double kNotConstrained = mission::kUnconstrained;
 
 /// Values over (alpha, Mach), row-major: values[i_alpha * mach.size() + i_mach].
 struct Table2D {
@@ -68,45 +70,13 @@ struct Vehicle {
   AeroModel aero;
 };
 
-/// State relative to the rotating Earth, spherical coordinates.
-struct SphericalState {
-  double altitude_m = 0.0;
-  double longitude_rad = 0.0;
-  double latitude_rad = 0.0;
-  double velocity_mps = 0.0;      // ground-relative speed
-  double flight_path_rad = 0.0;   // gamma (negative: descending)
-  double heading_rad = 0.0;       // chi, from North, clockwise
-};
-
-struct TaemInterface {
-  double altitude_m = 0.0;
-  double velocity_mps = 0.0;
-  double longitude_rad = 0.0;     // aim point
-  double latitude_rad = 0.0;
-  double heading_rad = 0.0;       // required heading at TAEM (towards the HAC)
-  // Tolerances (thesis 3.1.2 for X-33 / HORUS; adopted and justified in the file otherwise).
-  double range_tol_m = 0.0;       // distance to the aim point
-  double altitude_tol_m = 0.0;
-  double mach_target = 0.0;       // 0: not specified
-  double mach_tol = kNotConstrained;
-  double flight_path_rad = 0.0;
-  double flight_path_tol_rad = kNotConstrained;
-  double heading_tol_rad = 0.0;
-  double hac_radius_m = 0.0;      // heading-alignment circle radius
-};
-
-struct PathConstraints {
-  double heat_flux_max_Wpm2 = kNotConstrained;
-  double heat_load_max_Jpm2 = kNotConstrained;
-  double load_factor_max_g = kNotConstrained;      // body-normal, thesis 3.7
-  double q_alpha_max_Pa_rad = kNotConstrained;
-  double dynamic_pressure_max_Pa = kNotConstrained;
-  double alpha_max_rad = 0.0;
-  double alpha_rate_max_radps = 0.0;
-  double sigma_rate_max_radps = 0.0;
-  double alpha_accel_max_radps2 = 0.0;
-  double sigma_accel_max_radps2 = 0.0;
-};
+/// The interface types are shared with the flight software and the truth model
+/// (common/mission/mission_interface.hpp): entry state relative to the rotating Earth, TAEM
+/// interface with its tolerances (thesis 3.1.2 for X-33 / HORUS; adopted and justified in the
+/// file otherwise), path and control limits.
+using SphericalState = mission::EntryInterface;
+using TaemInterface = mission::TaemTarget;
+using PathConstraints = mission::PathLimits;
 
 /// A number of the [guidance] section that the loader passes through uninterpreted: the
 /// tunables of the planner and the tracker, which the flight software's own parameter lists
