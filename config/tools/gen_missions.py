@@ -62,7 +62,14 @@ flight_path_deg = 0.0
 flight_path_tol_deg = 25.0
 hac_radius_m = 6100.0         # ADOPTED: Shuttle HAC radius about 20,000 ft (Shuttle practice)""",
    alpha=[(0.0, 15.0), (0.15, 18.0), (0.30, 25.0), (0.45, 33.0), (0.55, 38.0), (0.62, 40.0), (1.0, 40.0)],
-   alpha_note="Shuttle practice: 40 deg at high energy, then a ramp down to ~15-18 deg by Mach 2.5. OUR profile."),
+   alpha_note="Shuttle practice: 40 deg at high energy, then a ramp down to ~15-18 deg by Mach 2.5. OUR profile.",
+   tracker="""
+[guidance.tracker]
+# The one tunable away from its default. Table 3.3's 2 deg/s bank rate makes a reversal through
+# wings level last a minute; the drag loop's lift-down answer to the climb it leaves becomes a
+# dive the roll cannot arrest, so the pull-out guard judges every descent (docs/guidance_design.md 3.1).
+pullout_guard_every_descent = 1
+"""),
  "x38": dict(src="table 3.3 (Shen 2002)", vehicle="x38", h=121.9, lon=140.6, lat=26.97, v=7467.8, g=-1.026, chi=58.95,
    th=24.4, tv=737.5, tlon=240.6, tlat=33.2, comment_lat="33.2 N (best reading, signs not confirmed by the thesis)",
    qdot=("%.4f" % (100 * BTU), "100 BTU/(ft^2 s)"), n=2.5, qa=None, q=("%.5f" % (300 * PSF), "300 psf"), amax=50, adot=10, sdot=9,
@@ -134,7 +141,7 @@ initial_descent_drag_mps2 = 0.4903325   # 0.05 g (Shuttle practice)
 # Every tunable of the planner and the tracker keeps its documented default (the same for all
 # vehicles; `reentry_config_check --params <mission>` lists them with units and ranges). A
 # mission may set any of them here, e.g. [guidance.tracker] corridor_half_width_min_deg = 3.0.
-
+{m.get('tracker', '')}
 [sim]
 integrator = "rkf56"
 rel_tol = 1e-10

@@ -51,14 +51,24 @@ TEST(GuidanceParams, DefaultsLieInTheirDocumentedRangesAndAreConsistent) {
   EXPECT_EQ(reentry::fsw::guidance_params_inconsistency(p), nullptr);
 }
 
-TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaults) {
+TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheOrbitersPullOutGuard) {
+  // One tunable is set away from its default, for the Orbiter's 2 deg/s bank rate: the
+  // pull-out guard on every descent (docs/guidance_design.md 3.1).
   for (const char* name : {"horus", "x33", "orbiter", "x38"}) {
     const auto r = reentry::config::load_mission(name);
     ASSERT_TRUE(r.ok) << r.error;
-    EXPECT_TRUE(r.mission.guidance.tuning.empty()) << name;
+    const auto& tuning = r.mission.guidance.tuning;
     auto setup = std::make_unique<GuidanceSetup>();
     ASSERT_EQ(reentry::fsw::make_guidance_setup(r.mission, *setup), "") << name;
     EXPECT_EQ(setup->params.tracker.initial_descent_drag_mps2, 0.05 * 9.80665) << name;
+    if (std::string(name) == "orbiter") {
+      ASSERT_EQ(tuning.size(), 1u);
+      EXPECT_EQ(tuning[0].key, "tracker.pullout_guard_every_descent");
+      EXPECT_EQ(setup->params.tracker.pullout_guard_every_descent, 1);
+    } else {
+      EXPECT_TRUE(tuning.empty()) << name;
+      EXPECT_EQ(setup->params.tracker.pullout_guard_every_descent, 0) << name;
+    }
   }
 }
 

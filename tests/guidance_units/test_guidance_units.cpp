@@ -638,6 +638,56 @@ TEST(Tracker, PullOutGuardStopsADiveThatWouldOvershootTheHeatLimit) {
   EXPECT_GT(std::fabs(out.sigma_rad), 10.0 * M_PI / 180.0);  // below the reference: bank to descend
 }
 
+TEST(Tracker, PullOutGuardOnEveryDescentAlsoJudgesALaterDescent) {
+  // The lift-down case of the test below (shallow descent under the reference, the vehicle
+  // flying lift down: its pull-out, rolled out at the bank-rate limit, bottoms out above the
+  // heat-flux bound, by independent integration), met after the entry descent has been
+  // arrested (a level state flown wings level first). By default the guard is then off for
+  // good and the drag loop keeps its lift down; with tracker.pullout_guard_every_descent = 1
+  // it judges this descent too and rolls out.
+  constexpr double kFraction = 0.3;
+  auto m = mid_profile_tracker(kFraction);
+  ASSERT_NE(m, nullptr);
+  const int k = static_cast<int>(kFraction * (m->profile->n_points - 1));
+  const RelativeState s = sinking_below_reference(*m, k, -0.3 * M_PI / 180.0);
+  OnboardModels models;
+  ASSERT_EQ(init_from_mission(models, m->mission), Status::kOk);
+  const double sigma_rate = m->mission.constraints.sigma_rate_max_radps;
+  const double bottom_level = pullout_bottom_drag_mps2(models, s, 0.0, sigma_rate);
+  const double bottom_lift_down = pullout_bottom_drag_mps2(models, s, M_PI, sigma_rate);
+  ASSERT_GT(bottom_lift_down, 1.3 * bottom_level);
+  const double alpha = m->profile->alpha_rad[k];
+  config::Mission tight = m->mission;
+  tight.constraints.heat_flux_max_Wpm2 =
+      heat_limit_for_drag_bound(models, s, alpha, std::sqrt(bottom_level * bottom_lift_down));
+  RelativeState level = s;
+  level.flight_path_rad = 0.0;
+  for (bool every : {false, true}) {
+    config::Mission mm = tight;
+    mm.guidance.tuning.push_back({"tracker.pullout_guard_every_descent", every ? 1.0 : 0.0, true});
+    TrackerOutput out;
+    ASSERT_EQ(init_from_mission(m->tracker, mm), Status::kOk);
+    m->tracker.set_profile(*m->profile);
+    m->tracker.set_flown_attitude(alpha, 0.0);
+    ASSERT_EQ(m->tracker.step(level, 0.1, out), Status::kOk);
+    ASSERT_EQ(out.phase, Phase::kTracking);
+    ASSERT_TRUE(out.telemetry.pullout_arrested);
+    RelativeState st = s;
+    st.t_s = level.t_s;
+    for (int cycle = 0; cycle < 4; ++cycle) {
+      st.t_s += 0.1;
+      m->tracker.set_flown_attitude(alpha, M_PI);
+      ASSERT_EQ(m->tracker.step(st, 0.1, out), Status::kOk);
+      ASSERT_EQ(out.phase, Phase::kTracking);
+      if (every) {
+        EXPECT_NEAR(out.sigma_rad, 0.0, 1e-12) << cycle;  // roll out
+      } else {
+        EXPECT_GT(std::fabs(out.sigma_rad), M_PI / 2.0) << cycle;  // latched off: lift down stays
+      }
+    }
+  }
+}
+
 TEST(Tracker, PullOutGuardRollsOutOfTheBankActuallyFlown) {
   // Below the reference in a shallow descent the drag loop asks for lift down. Flown wings
   // level, the pull-out from here bottoms out below the heat-flux bound; flown lift down (bank

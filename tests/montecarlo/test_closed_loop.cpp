@@ -93,6 +93,35 @@ TEST(ClosedLoop, X38NominalReachesTaemWithinEveryTolerance) {
   fly_nominal_within_tolerances(load("x38"));
 }
 
+TEST(ClosedLoop, OrbiterKeepsItsHeatAndLoadLimitsThroughThePlannedReversal) {
+  // Table 3.3's 2 deg/s bank rate: the planned reversal on the heat-flux bound rolls through
+  // wings level for about a minute and leaves a climb; the drag loop answers with lift down
+  // 150-170 deg, and with the pull-out guard latched off after the entry pull-out the dive it
+  // starts cannot be rolled out of in time (truth: 3218 kW/m2 and 7.3 g against 795 kW/m2 and
+  // 2.5 g). The mission file sets tracker.pullout_guard_every_descent, so the guard judges that
+  // descent too: the flight reaches the TAEM energy within both limits. It does not yet meet
+  // the TAEM tolerances (issue 25 item 4, docs/status.md): this test holds what is achieved.
+  const config::Mission m = load("orbiter");
+  const tools::ClosedLoopResult guarded = tools::run_closed_loop(m, 1, false);
+  ASSERT_TRUE(guarded.error.empty()) << guarded.error;
+  EXPECT_EQ(guarded.summary.event, truth::SimEvent::kTaemEnergy);
+  EXPECT_LT(guarded.summary.maxima.qdot_Wpm2, m.constraints.heat_flux_max_Wpm2);
+  EXPECT_LT(guarded.summary.maxima.n_g, m.constraints.load_factor_max_g);
+  config::Mission latched = m;
+  int set = 0;
+  for (auto& t : latched.guidance.tuning) {
+    if (t.key == "tracker.pullout_guard_every_descent") {
+      t.value = 0.0;
+      ++set;
+    }
+  }
+  ASSERT_EQ(set, 1);
+  const tools::ClosedLoopResult unguarded = tools::run_closed_loop(latched, 1, false);
+  ASSERT_TRUE(unguarded.error.empty()) << unguarded.error;
+  EXPECT_GT(unguarded.summary.maxima.qdot_Wpm2, 2.0 * m.constraints.heat_flux_max_Wpm2);
+  EXPECT_GT(unguarded.summary.maxima.n_g, 2.0 * m.constraints.load_factor_max_g);
+}
+
 TEST(ClosedLoop, DispersedX33RunsThatTurnedPastTheArrivalLineNowArriveOnIt) {
   // Dispersed entries (seeds of the uniform 500-run campaign) that reached TAEM 12-18 km out
   // and up to 10.5 deg off heading with the final reversal timed on a constant turn at the

@@ -68,11 +68,14 @@ double ConstraintLimiter::pullout_drag_mps2(const RelativeState& s, double sigma
 
 double ConstraintLimiter::pullout_guard(const RelativeState& s, double sigma_flown_rad, double u_drag, double lod,
                                         bool terminal, double limit_mps2) {
-  if (pullout_arrested_) return u_drag;
+  if (pullout_arrested_ && params_->pullout_guard_every_descent == 0) return u_drag;
   const double d_pullout = pullout_drag_mps2(s, sigma_flown_rad);
   pullout_arrested_ = d_pullout < params_->pullout_complete_ratio * s.drag_mps2;
   // The linear drag loop alone follows the planned drag ramp after capture with lift down and
-  // reaches the plateau in a dive it can no longer arrest.
+  // reaches the plateau in a dive it can no longer arrest. With a slow bank rate the same holds
+  // for later descents (pullout_guard_every_descent): the climb a reversal through wings level
+  // leaves is answered by the drag loop with lift down, and the roll back out of it takes as
+  // long as the reversal itself.
   if (!pullout_arrested_ && !terminal && u_drag < lod && d_pullout > limit_mps2) return lod;
   return u_drag;
 }

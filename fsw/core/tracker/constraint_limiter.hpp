@@ -1,8 +1,9 @@
 // Constraint limiting: what the tracker does so that the flown state stays inside the path
 // constraints whatever the plan and the drag loop ask for.
-//   - the entry pull-out guard: from capture until the entry descent is arrested, a descent
-//     whose wings-level pull-out would bottom out above the constraint limit is stopped now
-//     with full lift (vertical energy balance of the pull-out);
+//   - the entry pull-out guard: from capture until the entry descent is arrested (optionally
+//     on every later descent too), a descent whose wings-level pull-out would bottom out above
+//     the constraint limit is stopped now with full lift (vertical energy balance of the
+//     pull-out);
 //   - the sensed-constraint drag limit: the largest drag at which q, q alpha, the load factor
 //     and the heat flux (3.5) stay within the planned fraction of their limits at the sensed
 //     state;
@@ -56,7 +57,8 @@ class ConstraintLimiter {
   /// The pull-out guard on the vertical L/D command u_drag: full lift (u = L/D) while the
   /// entry descent is not arrested and its pull-out would bottom out above `limit_mps2`.
   /// Judged from the bank the vehicle flies; off in the terminal phase; latched off once the
-  /// pull-out is complete (later descents are the drag loop's own).
+  /// pull-out is complete (later descents are the drag loop's own), unless
+  /// pullout_guard_every_descent, which judges every descent until the terminal phase.
   double pullout_guard(const RelativeState& s, double sigma_flown_rad, double u_drag, double lod, bool terminal,
                        double limit_mps2);
   bool pullout_arrested() const { return pullout_arrested_; }

@@ -30,6 +30,7 @@ struct TrackerParams {
   double capture_lookahead_energy_fraction = 0.02;  // reference compared at E - fraction E_entry
   double pullout_complete_ratio = 1.05;      // pull-out complete when D would rise less than this factor
   double roll_lag_s = 1.0;                   // bank filter lag before a roll starts (pull-out, final turn)
+  int pullout_guard_every_descent = 0;       // 1: the pull-out guard judges every descent, not only the entry's
   // Lateral logic: heading corridor, arrival-line field, capture guard, final reversal.
   double corridor_half_width_max_rad = 6.0 * M_PI / 180.0;  // at the corridor start ...
   double corridor_half_width_min_rad = 3.0 * M_PI / 180.0;  // ... narrowing linearly to TAEM
@@ -84,6 +85,8 @@ void visit_tracker_params(Params& p, Visitor&& v) {
   v("capture_lookahead_energy_fraction", p.capture_lookahead_energy_fraction, U::kNone, 0.0, 0.2, "capture reference lookahead / E_entry");
   v("pullout_complete_ratio", p.pullout_complete_ratio, U::kNone, 1.0, 2.0, "pull-out complete below this drag rise");
   v("roll_lag_s", p.roll_lag_s, U::kNone, 0.0, 10.0, "bank filter lag before a roll");
+  v("pullout_guard_every_descent", p.pullout_guard_every_descent, U::kNone, 0, 1,
+    "1: pull-out guard on every descent (0: until the entry pull-out is complete)");
   v("corridor_half_width_max_deg", p.corridor_half_width_max_rad, U::kDeg, 0.5, 45.0, "heading corridor at its start");
   v("corridor_half_width_min_deg", p.corridor_half_width_min_rad, U::kDeg, 0.5, 45.0, "heading corridor at TAEM");
   v("approach_angle_max_deg", p.approach_angle_max_rad, U::kDeg, 1.0, 90.0, "arrival-line field chi_inf");
