@@ -14,6 +14,7 @@
 #include <string>
 
 #include "dynamics/dispersions.hpp"
+#include "dynamics/point_model.hpp"
 #include "reentry/config/mission.hpp"
 
 namespace reentry::truth {
@@ -146,15 +147,17 @@ class Simulator {
   double taem_energy_Jpkg() const { return settings_.E_taem_Jpkg; }
   /// Energy of the entry state (for schedules in normalised energy E/E_entry).
   double entry_energy_Jpkg() const { return E_entry_Jpkg_; }
+  /// The run's truth models at one instant (dispersions applied), as the integrator sees them;
+  /// the trajectory optimizer evaluates the same object with AD scalars.
+  const PointModel& point_model() const;
 
  private:
   struct Models;
   struct Attitude;  // achieved attitude model of one command segment
-  struct Derived;   // everything computed from (t, y) in one evaluation
 
   Simulator();
   void derivatives(double t, const State& y, State& dydt) const;
-  Derived evaluate(double t, const State& y, bool full) const;  // full: also the outputs
+  PointOutputs<double> evaluate(double t, const State& y, bool full) const;  // full: also the outputs
   void attitude_at(double t, double* alpha_rad, double* sigma_rad) const;
   double next_attitude_breakpoint(double after_t) const;
   void start_segment();
