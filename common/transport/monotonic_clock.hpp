@@ -1,5 +1,6 @@
 // Absolute-deadline pacing on CLOCK_MONOTONIC, shared by the guidance process and the
-// simulator process (realtime mode): clock_nanosleep with TIMER_ABSTIME, retried on EINTR.
+// simulator process (realtime mode): clock_nanosleep with TIMER_ABSTIME, retried on EINTR;
+// and the thread CPU-time clock of the guidance cycle's compute-time figures.
 #pragma once
 
 #include <time.h>
@@ -12,6 +13,13 @@ namespace reentry::transport {
 inline std::int64_t mono_ns() {
   timespec ts{};
   clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
+}
+
+/// CPU time consumed by the calling thread [ns] (the executive's cycle-time clock).
+inline std::int64_t thread_cpu_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<std::int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
 }
 

@@ -5,6 +5,21 @@ from the entry point (our definition; the thesis gives only 'heading towards the
 import math, os
 D = math.pi / 180
 BTU = 11356.5267; PSF = 47.880259
+# Dispersed quantities (DESIGN 8), the same numbers in the Gaussian reference set (3 sigma) and
+# the uniform stress set (half-widths).
+DISPERSIONS = """entry_flight_path_deg = 0.2
+entry_heading_deg = 0.5
+entry_velocity_mps = 20.0
+entry_position_deg = 0.0
+density_scale = 0.15
+density_perturbation = 0.05      # amplitude of the altitude-correlated shape (random phases; no distribution)
+density_correlation_m = 10000.0
+cl_scale = 0.10
+cd_scale = 0.10
+mass_scale = 0.05
+wind_scale_min = 0.0             # wind profile scale range (gaussian: about its centre, 3 sigma at its ends)
+wind_scale_max = 1.5
+"""
 def arrival_az(lon1, lat1, lon2, lat2):
     p1, p2, dl = lat1 * D, lat2 * D, (lon2 - lon1) * D
     # azimuth at point 2 of the course from 1 to 2 = reverse of initial azimuth from 2 to 1, + 180
@@ -115,16 +130,10 @@ replan_drag_error_frac = 0.15
 drag_profile = "smooth"
 initial_drag = "actual"
 onboard_atmosphere = "table"
-rk4_steps = 600
-max_length_iterations = 20
-downrange_tol_m = 1500.0
-crossrange_tol_m = 1000.0
 initial_descent_drag_mps2 = 0.4903325   # 0.05 g (Shuttle practice)
-zeta = 0.7071067811865476
-omega0_radps = 0.0          # 0: derived by the documented rule
-k_integral = 0.0
-k_heading = 0.0
-k_heading_integral = 0.0
+# Every tunable of the planner and the tracker keeps its documented default (the same for all
+# vehicles; `reentry_config_check --params <mission>` lists them with units and ranges). A
+# mission may set any of them here, e.g. [guidance.tracker] corridor_half_width_min_deg = 3.0.
 
 [sim]
 integrator = "rkf56"
@@ -142,19 +151,16 @@ transport_delay_ticks = 0
 time_limit_s = 4000.0
 
 [dispersions]
-entry_flight_path_deg = 0.2
-entry_heading_deg = 0.5
-entry_velocity_mps = 20.0
-entry_position_deg = 0.0
-density_scale = 0.15
-density_perturbation = 0.05
-density_correlation_m = 10000.0
-cl_scale = 0.10
-cd_scale = 0.10
-mass_scale = 0.05
-wind_scale_min = 0.0
-wind_scale_max = 1.5
-
+# Reference campaigns (tools/mc, tools/sil --seed): DESIGN 8's dispersion table read as entry
+# Monte Carlo studies mean it, every number 3 sigma of a Gaussian truncated at 3 sigma.
+# A quantity may take its own: <quantity>_distribution = "uniform" (its number: the half-width).
+distribution = "gaussian"
+{DISPERSIONS}
+[stress_dispersions]
+# Stress campaign (tools/mc --dispersions stress): the same numbers as uniform half-widths (the
+# campaigns of sessions 1-16), every value up to the edge as likely as the nominal one.
+distribution = "uniform"
+{DISPERSIONS}
 [environment]
 us76_table = "../environment/us76.dat"
 gravity_coefficients = "../environment/egm96_deg20.txt"

@@ -1,19 +1,15 @@
 #include "app/guidance_node.hpp"
 
-#include <lcm/lcm-cpp.hpp>
-#include <time.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <map>
 #include <vector>
 
 #include "transport/lcm_codec.hpp"
 #include "transport/monotonic_clock.hpp"
+#include "transport/run_log.hpp"
 
 namespace reentry::fsw::app {
 namespace {
@@ -25,69 +21,209 @@ using transport::sleep_until_ns;
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
 
+bool is_channel(const char* a, const char* b) { return std::strcmp(a, b) == 0; }
+
+constexpr std::int64_t kAwaitPollNs = 100000;    // lockstep: poll the plan every 100 us while it is late
+constexpr std::int64_t kIdlePollNs = 20000000;   // otherwise wake at least every 20 ms
+constexpr std::size_t kLogRingBytes = 16u << 20;  // ~60 s of lockstep traffic at full speed
+
+std::int32_t clamp_i32(std::int64_t v) {
+  return static_cast<std::int32_t>(std::min<std::int64_t>(v, 2147483647));
+}
+
 }  // namespace
+
+const char* exit_name(int code) {
+  switch (code) {
+    case kExitOk: return "ok";
+    case kExitUsage: return "usage";
+    case kExitLinkLoss: return "link_loss";
+    case kExitReplayDiffers: return "replay_differs";
+    case kExitLogIncomplete: return "log_incomplete";
+    case kExitLogDamaged: return "log_damaged";
+    case kExitTransport: return "transport_error";
+    default: return "unknown";
+  }
+}
 
 GuidanceNode::GuidanceNode(exec::Executive& exec, NavConvertFn convert, void* convert_ctx, double gnc_rate_hz)
     : exec_(exec), convert_(convert), convert_ctx_(convert_ctx), dt_s_(1.0 / gnc_rate_hz) {}
 
-void GuidanceNode::on_nav(const lcm::ReceiveBuffer* rbuf, const std::string&, GuidanceNode* self) {
-  if (!decode_into(self->nav_rx_, rbuf->data, static_cast<int>(rbuf->data_size), self->bad_messages_)) return;
-  if (!self->nav_pending_ || self->nav_rx_.tick >= self->nav_newest_.tick) {
-    self->nav_newest_ = self->nav_rx_;
-    self->nav_pending_ = true;
-  }
+bool GuidanceNode::open_log(const std::string& path, RunMode mode, std::string& error) {
+  if (path.empty()) return true;
+  const auto policy = mode == RunMode::kRealtime ? transport::EventLogWriter::WhenFull::kDrop
+                                                 : transport::EventLogWriter::WhenFull::kWait;
+  return log_.open(path, kLogRingBytes, policy, error);
 }
 
-void GuidanceNode::on_run_control(const lcm::ReceiveBuffer* rbuf, const std::string&, GuidanceNode* self) {
-  if (!decode_into(self->rc_rx_, rbuf->data, static_cast<int>(rbuf->data_size), self->bad_messages_)) return;
-  if (self->rc_rx_.command == run_control_t::END_OF_RUN || self->rc_rx_.command == run_control_t::STOP) {
-    self->end_of_run_ = true;
-  }
+template <class Msg>
+void GuidanceNode::publish(const char* channel, const Msg& msg) {
+  const int n = encode_into(msg, tx_, static_cast<int>(sizeof tx_));
+  if (n <= 0) return;
+  if (net_ != nullptr) net_->publish(channel, tx_, n);
+  log_.record(channel, tx_, n);
 }
 
-bool GuidanceNode::cycle(const nav_state_t& nav, guidance_cmd_t& cmd, guidance_status_t& status,
-                         bool& plan_adopted) {
+void GuidanceNode::on_datagram(const char* channel, const std::uint8_t* payload, int len) {
+  now_ns_ = mono_ns();
+  if (is_channel(channel, "NAV_STATE")) {
+    log_.record(channel, payload, len);
+    if (!decode_into(nav_rx_, payload, len, bad_messages_)) return;
+    handle_nav(nav_rx_);
+  } else if (is_channel(channel, "RUN_CONTROL")) {
+    log_.record(channel, payload, len);
+    if (!decode_into(rc_rx_, payload, len, bad_messages_)) return;
+    handle_run_control(rc_rx_);
+  }
+  // Other channels (our own output looped back, truth telemetry) are not ours to read.
+}
+
+void GuidanceNode::handle_run_control(const run_control_t& rc) {
+  const bool ends = rc.command == run_control_t::END_OF_RUN || rc.command == run_control_t::STOP;
+  if (!ends) {
+    if (rc.command != run_control_t::START) ++bad_messages_;  // unknown command
+    return;
+  }
+  // Only an end that belongs to this run: at the last answered tick or just ahead of it.
+  const bool plausible = rc.tick >= 0 && (rc.tick == last_tick_answered_ || exec_.tick_in_window(rc.tick));
+  if (!plausible) {
+    ++bad_messages_;
+    return;
+  }
+  end_of_run_ = true;
+}
+
+exec::CycleOutput GuidanceNode::cycle(const nav_state_t& nav) {
   exec::NavInput in;
   in.tick = nav.tick;
   if (convert_(nav, in.state, convert_ctx_) != Status::kOk) {
-    in.state.t_s = std::nan("");  // rejected by the executive's validation: command held
+    in.state = RelativeState{};
+    in.state.t_s = nav.t_s;  // the tick/time windows still apply; the values are rejected: command held
+    in.values_valid = false;
   }
-  const exec::CycleOutput out = exec_.step(in);
-  plan_adopted = out.plan_adopted;
-  if (!out.emitted) return false;
+  return exec_.step(in);
+}
+
+void GuidanceNode::handle_nav(const nav_state_t& nav) {
+  if (mode_ == RunMode::kRealtime) {
+    // The newest plausible sample of the period is flown at the next deadline; anything the
+    // executive would refuse anyway goes to it now, to be counted.
+    if (exec_.tick_in_window(nav.tick)) {
+      note_nav_alive();  // a plausible tick, stamped at its arrival (its values are judged at the deadline)
+      if (!nav_pending_ || nav.tick > nav_newest_.tick) {
+        nav_newest_ = nav;
+        nav_pending_ = true;
+      }
+      return;
+    }
+    const exec::CycleOutput out = cycle(nav);
+    if (out.nav_verdict == exec::NavVerdict::kDuplicate) note_nav_alive();
+    return;
+  }
+  const bool was_awaiting = exec_.awaiting_plan();
+  const exec::CycleOutput out = cycle(nav);
+  if (out.nav_verdict != exec::NavVerdict::kRejectedTick) note_nav_alive();
+  if (out.awaiting_plan) {
+    if (!was_awaiting) {
+      awaiting_nav_ = nav;
+      last_heartbeat_ns_ = now_ns_;
+    }
+    return;
+  }
+  if (out.emitted) {
+    on_cycle(out);
+  } else if (out.nav_verdict == exec::NavVerdict::kDuplicate && have_cmd_ && nav.tick == cmd_.tick) {
+    // The simulator repeats a nav message while it waits: answer again (same command).
+    publish("GUIDANCE_CMD", cmd_);
+  }
+}
+
+void GuidanceNode::fill_cmd(const exec::CycleOutput& out) {
+  cmd_.utime = std::llround(out.t_s * 1e6);
+  cmd_.tick = out.tick;
+  cmd_.alpha_rad = out.alpha_rad;
+  cmd_.beta_rad = 0.0;
+  cmd_.sigma_rad = out.sigma_rad;
+  cmd_.mode = static_cast<std::int8_t>(out.phase);
+  cmd_.plan_seq = out.plan_seq;
+  cmd_.health_flags = out.health_flags;
+}
+
+void GuidanceNode::fill_status(const exec::CycleOutput& out) {
   const exec::ExecCounters& c = exec_.counters();
-  cmd.utime = nav.utime;
-  cmd.tick = nav.tick;
-  cmd.alpha_rad = out.alpha_rad;
-  cmd.beta_rad = 0.0;
-  cmd.sigma_rad = out.sigma_rad;
-  cmd.mode = static_cast<std::int8_t>(out.phase);
-  cmd.plan_seq = out.plan_seq;
-  cmd.health_flags = out.health_flags;
-  status.utime = nav.utime;
-  status.tick = nav.tick;
-  status.phase = static_cast<std::int8_t>(out.phase);
-  status.mode = static_cast<std::int8_t>(mode_);
-  status.health_flags = out.health_flags;
-  status.cycle_us_last = c.cycle_us_last;
-  status.cycle_us_max = c.cycle_us_max;
-  status.jitter_us_last = jitter_us_last_;
-  status.jitter_us_max = jitter_us_max_;
-  status.cycle_overruns = cycle_overruns_;
-  status.plan_overruns = c.plan_overruns;
-  status.planner_runs = c.planner_runs;
-  status.planner_ms_last = c.planner_ms_last;
-  status.planner_ms_max = c.planner_ms_max;
-  status.plan_age_s = c.plan_adopted_t_s >= 0.0 ? nav.t_s - c.plan_adopted_t_s : -1.0;
-  status.plan_latency_ms = c.plan_latency_ms;
-  status.plan_seq = out.plan_seq;
-  status.bad_messages = bad_messages_;
-  status.invalid_nav = c.invalid_nav;
-  status.duplicate_ticks = c.duplicate_ticks;
-  status.skipped_ticks = c.skipped_ticks;
-  status.drag_err_mps2 = out.drag_err_mps2;
-  status.heading_err_rad = out.heading_err_rad;
-  return true;
+  status_.utime = std::llround(out.t_s * 1e6);
+  status_.tick = out.tick;
+  status_.phase = static_cast<std::int8_t>(out.phase);
+  status_.mode = static_cast<std::int8_t>(mode_);
+  status_.health_flags = out.health_flags;
+  status_.cycle_us_last = c.cycle_us_last;
+  status_.cycle_us_max = c.cycle_us_max;
+  status_.jitter_us_last = jitter_us_last_;
+  status_.jitter_us_max = jitter_us_max_;
+  status_.cycle_overruns = cycle_overruns_;
+  status_.plan_overruns = c.plan_overruns;
+  status_.planner_runs = c.planner_runs;
+  status_.planner_ms_last = c.planner_ms_last;
+  status_.planner_ms_max = c.planner_ms_max;
+  status_.plan_age_s = c.plan_adopted_t_s >= 0.0 ? out.t_s - c.plan_adopted_t_s : -1.0;
+  status_.plan_latency_ms = c.plan_latency_ms;
+  status_.plan_seq = out.plan_seq;
+  status_.bad_messages = bad_messages_;
+  status_.invalid_nav = c.invalid_nav;
+  status_.duplicate_ticks = c.duplicate_ticks;
+  status_.skipped_ticks = c.skipped_ticks;
+  status_.drag_err_mps2 = out.drag_err_mps2;
+  status_.heading_err_rad = out.heading_err_rad;
+  status_.plan_waits = c.plan_waits;
+  status_.plan_wait_ms_last = c.plan_wait_ms_last;
+  status_.plan_wait_ms_max = c.plan_wait_ms_max;
+  status_.nav_rejected_tick = c.nav_rejected_tick;
+  if (net_ != nullptr) {
+    status_.bad_datagrams = clamp_i32(net_->counters().bad_datagrams);
+    status_.rx_kernel_drops = clamp_i32(net_->counters().kernel_drops);
+  }
+  status_.log_dropped = clamp_i32(log_.dropped());
+  status_.link_silent_ms = link_silent_s_ * 1e3;
+}
+
+void GuidanceNode::on_cycle(const exec::CycleOutput& out) {
+  fill_cmd(out);
+  fill_status(out);
+  have_cmd_ = true;
+  last_tick_answered_ = out.tick;
+  publish("GUIDANCE_CMD", cmd_);
+  ++commands_published_;
+  publish("GUIDANCE_STATUS", status_);
+  fill_tracker_status(out);
+  publish("TRACKER_STATUS", tracker_);
+  if (out.plan_adopted) {
+    fill_plan(out.tick);
+    publish("PLAN", plan_);
+  }
+}
+
+void GuidanceNode::fill_tracker_status(const exec::CycleOutput& out) {
+  const TrackerTelemetry& t = out.tracker;
+  tracker_status_t& m = tracker_;
+  m.utime = std::llround(out.t_s * 1e6);
+  m.tick = out.tick;
+  m.phase = static_cast<std::int8_t>(t.phase);
+  m.flags = static_cast<std::int8_t>((t.reversing ? 1 : 0) | (t.final_reversal_done ? 2 : 0) |
+                                     (t.final_correction_done ? 4 : 0) | (t.pullout_arrested ? 8 : 0) |
+                                     (t.saturated ? 16 : 0));
+  m.drag_ref_mps2 = t.drag_ref_mps2;
+  m.drag_err_mps2 = t.drag_err_mps2;
+  m.drag_integral_mps = t.drag_integral_mps;
+  m.omega_radps = t.omega_radps;
+  m.drag_ratio = t.drag_ratio;
+  m.lift_over_drag_ratio = t.lift_over_drag_ratio;
+  m.corridor_half_width_rad = t.corridor_half_width_rad;
+  m.heading_err_rad = t.heading_err_rad;
+  m.terminal_increment_mps2 = t.terminal_increment_mps2;
+  m.time_to_go_s = t.time_to_go_s;
+  m.mean_bank_rad = t.mean_bank_rad;
+  m.cross_track_m = t.cross_track_m;
+  m.along_track_m = t.along_track_m;
 }
 
 void GuidanceNode::fill_plan(std::int64_t tick) {
@@ -120,176 +256,254 @@ void GuidanceNode::fill_plan(std::int64_t tick) {
   plan_.compute_ms = exec_.counters().planner_ms_last;
 }
 
-void GuidanceNode::publish_cycle(lcm::LCM& lcm, bool plan_adopted) {
-  int n = encode_into(cmd_, tx_, static_cast<int>(sizeof tx_));
-  if (n > 0) lcm.publish("GUIDANCE_CMD", tx_, static_cast<unsigned>(n));
-  n = encode_into(status_, tx_, static_cast<int>(sizeof tx_));
-  if (n > 0) lcm.publish("GUIDANCE_STATUS", tx_, static_cast<unsigned>(n));
-  if (plan_adopted) {
-    fill_plan(cmd_.tick);
-    n = encode_into(plan_, tx_, static_cast<int>(sizeof tx_));
-    if (n > 0) lcm.publish("PLAN", tx_, static_cast<unsigned>(n));
-  }
+void GuidanceNode::publish_heartbeat() {
+  // A lockstep cycle waits for its plan: tell the simulator we are alive and why it waits.
+  exec::CycleOutput o = exec_.last_valid_output();
+  o.tick = exec_.awaiting_tick();
+  o.t_s = awaiting_nav_.t_s;
+  fill_status(o);
+  status_.health_flags |= exec::kHealthPlanWait;
+  publish("GUIDANCE_STATUS", status_);
 }
 
-void GuidanceNode::publish_safe_status(lcm::LCM& lcm) {
-  status_.phase = static_cast<std::int8_t>(Phase::kSafe);
-  status_.health_flags |= exec::kHealthLinkLoss;
-  status_.bad_messages = bad_messages_;
-  const int n = encode_into(status_, tx_, static_cast<int>(sizeof tx_));
-  if (n > 0) lcm.publish("GUIDANCE_STATUS", tx_, static_cast<unsigned>(n));
+void GuidanceNode::publish_safe(double silent_s) {
+  // Link loss: the last valid attitude is held, in the safe phase, flagged.
+  exec::CycleOutput o = exec_.last_valid_output();
+  o.tick = last_tick_answered_ >= 0 ? last_tick_answered_ : 0;
+  o.phase = Phase::kSafe;
+  o.health_flags |= exec::kHealthLinkLoss;
+  link_silent_s_ = silent_s;
+  fill_cmd(o);
+  fill_status(o);
+  publish("GUIDANCE_CMD", cmd_);
+  publish("GUIDANCE_STATUS", status_);
 }
 
-int GuidanceNode::run_live(lcm::LCM& lcm, RunMode mode, double lockstep_link_timeout_s,
-                           double startup_timeout_s) {
+int GuidanceNode::run_live(transport::UdpmSocket& net, RunMode mode, const LiveOptions& options) {
   mode_ = mode;
-  lcm.subscribeFunction("NAV_STATE", &GuidanceNode::on_nav, this);
-  lcm.subscribeFunction("RUN_CONTROL", &GuidanceNode::on_run_control, this);
-  bool started = false;
-  std::int64_t last_nav_ns = mono_ns();
+  net_ = &net;
   const std::int64_t period_ns = static_cast<std::int64_t>(std::llround(dt_s_ * 1e9));
+  const std::int64_t link_ns = static_cast<std::int64_t>(options.link_timeout_ticks) * period_ns;
+  const std::int64_t startup_ns = static_cast<std::int64_t>(options.startup_timeout_s * 1e9);
   const std::int64_t start_ns = mono_ns();
-  std::int64_t last_tick = -1;
-  bool adopted = false;
+  last_alive_ns_ = start_ns;
+  transport::Datagram d;
+  auto link_lost = [&](std::int64_t now, std::int64_t since) {
+    const bool started = last_tick_answered_ >= 0;
+    const std::int64_t silent = now - since;
+    link_silent_s_ = static_cast<double>(silent) * 1e-9;
+    if (silent <= (started ? link_ns : startup_ns)) return false;
+    publish_safe(link_silent_s_);
+    std::fprintf(stderr,
+                 "reentry_fsw: link loss: no NAV_STATE for %.3f s (%d ticks of %.3f s) after tick %lld; "
+                 "safe command held (alpha %.2f deg, sigma %.2f deg), health flag link_loss; exit %d (%s)\n",
+                 link_silent_s_, options.link_timeout_ticks, dt_s_, static_cast<long long>(last_tick_answered_),
+                 cmd_.alpha_rad * 180.0 / M_PI, cmd_.sigma_rad * 180.0 / M_PI, kExitLinkLoss,
+                 exit_name(kExitLinkLoss));
+    return true;
+  };
 
   if (mode == RunMode::kLockstep) {
+    std::int64_t last_answer_ns = start_ns;
     for (;;) {
-      lcm.handleTimeout(50);
-      if (nav_pending_) {
-        nav_pending_ = false;
-        started = true;
-        last_nav_ns = mono_ns();
-        if (cycle(nav_newest_, cmd_, status_, adopted)) {
-          publish_cycle(lcm, adopted);
-        } else if (nav_newest_.tick == cmd_.tick) {
-          // The simulator repeats a nav message while it waits: answer again (same command).
-          const int n = encode_into(cmd_, tx_, static_cast<int>(sizeof tx_));
-          if (n > 0) lcm.publish("GUIDANCE_CMD", tx_, static_cast<unsigned>(n));
+      const int r = net.receive(d, exec_.awaiting_plan() ? kAwaitPollNs : kIdlePollNs);
+      if (r < 0) {
+        std::fprintf(stderr, "reentry_fsw: receive failed; exit %d (%s)\n", kExitTransport, exit_name(kExitTransport));
+        return kExitTransport;
+      }
+      const std::int64_t answered_before = commands_published_;
+      if (r == 1) on_datagram(d.channel, d.payload, d.payload_len);
+      const std::int64_t now = mono_ns();
+      if (end_of_run_) return kExitOk;
+      if (exec_.awaiting_plan()) {
+        now_ns_ = now;
+        const exec::CycleOutput out = exec_.resume();
+        if (!out.awaiting_plan) {
+          on_cycle(out);
+        } else if (now - last_heartbeat_ns_ >= period_ns) {
+          last_heartbeat_ns_ = now;
+          publish_heartbeat();
         }
       }
-      if (end_of_run_) return kExitOk;
-      const double silent_s = static_cast<double>(mono_ns() - last_nav_ns) * 1e-9;
-      if (silent_s > (started ? lockstep_link_timeout_s : startup_timeout_s)) {
-        publish_safe_status(lcm);
-        std::fprintf(stderr, "reentry_fsw: link loss (no nav for %.2f s)\n", silent_s);
-        return kExitLinkLoss;
-      }
+      if (commands_published_ != answered_before) last_answer_ns = now;
+      // The simulator owes the next sample from our last answer on; while our cycle waits for
+      // its plan we owe the answer (the heartbeats tell the simulator so).
+      if (!exec_.awaiting_plan() && link_lost(now, std::max(last_alive_ns_, last_answer_ns))) return kExitLinkLoss;
     }
   }
-  // Realtime: absolute deadlines start + i*period, newest nav consumed each cycle.
+  // Realtime: absolute deadlines start + i*period, newest plausible nav consumed each cycle.
   for (std::int64_t i = 1;; ++i) {
     const std::int64_t deadline = start_ns + i * period_ns;
     sleep_until_ns(deadline);
     const std::int64_t woke = mono_ns();
     jitter_us_last_ = static_cast<double>(woke - deadline) * 1e-3;
     jitter_us_max_ = std::max(jitter_us_max_, jitter_us_last_);
-    while (lcm.handleTimeout(0) > 0) {
+    for (;;) {
+      const int r = net.receive(d, 0);
+      if (r < 0) {
+        std::fprintf(stderr, "reentry_fsw: receive failed; exit %d (%s)\n", kExitTransport, exit_name(kExitTransport));
+        return kExitTransport;
+      }
+      if (r == 0) break;
+      on_datagram(d.channel, d.payload, d.payload_len);
     }
     if (end_of_run_) return kExitOk;
-    if (nav_pending_ && nav_newest_.tick != last_tick) {
+    now_ns_ = woke;
+    if (nav_pending_) {
       nav_pending_ = false;
-      started = true;
-      last_nav_ns = woke;
-      last_tick = nav_newest_.tick;
-      if (cycle(nav_newest_, cmd_, status_, adopted)) publish_cycle(lcm, adopted);
+      const exec::CycleOutput out = cycle(nav_newest_);
+      if (out.emitted) on_cycle(out);
     }
     if (mono_ns() > deadline + period_ns) ++cycle_overruns_;
-    const std::int64_t silent_ns = woke - last_nav_ns;
-    if ((started && silent_ns > 3 * period_ns) ||
-        (!started && static_cast<double>(silent_ns) * 1e-9 > startup_timeout_s)) {
-      publish_safe_status(lcm);
-      std::fprintf(stderr, "reentry_fsw: link loss (no nav for %.3f s)\n", static_cast<double>(silent_ns) * 1e-9);
-      return kExitLinkLoss;
-    }
+    if (link_lost(mono_ns(), last_alive_ns_)) return kExitLinkLoss;
   }
 }
 
-int GuidanceNode::run_replay(const std::string& log_path, bool compare) {
-  mode_ = RunMode::kReplay;
-  lcm::LogFile log(log_path, "r");
-  if (!log.good()) {
-    std::fprintf(stderr, "reentry_fsw: cannot read log %s\n", log_path.c_str());
-    return kExitUsage;
+namespace {
+
+/// Reads and judges a log for replay (ground side: containers are fine here). kExitOk when it
+/// can be replayed, else the exit status, with the reason printed.
+int check_replay_log(const std::string& log_path, bool compare, bool allow_unsealed, transport::RunLogCheck& check,
+                     transport::RunCompleteness& run) {
+  std::string channel;
+  const transport::LogFraming fr = transport::read_event_log(log_path, [&](const transport::LogEventView& ev) {
+    channel.assign(ev.channel, static_cast<std::size_t>(ev.channel_len));
+    check.add(channel, ev.data, ev.size);
+    return true;
+  });
+  if (!fr.error.empty()) {
+    std::printf("damaged log: %s\n", fr.error.c_str());
+    return kExitLogDamaged;
   }
-  // Ground-side replay: containers are fine here (not the flight loop).
-  std::map<std::int64_t, nav_state_t> navs;
-  std::map<std::int64_t, guidance_cmd_t> logged;
-  nav_state_t nav{};
-  guidance_cmd_t cmd{};
-  for (const lcm::LogEvent* ev = log.readNextEvent(); ev != nullptr; ev = log.readNextEvent()) {
-    if (ev->channel == "NAV_STATE") {
-      if (decode_into(nav, ev->data, ev->datalen, bad_messages_)) navs.emplace(nav.tick, nav);
-    } else if (ev->channel == "GUIDANCE_CMD") {
-      if (decode_into(cmd, ev->data, ev->datalen, bad_messages_)) logged.emplace(cmd.tick, cmd);
-    }
+  if (fr.malformed()) {
+    std::printf("damaged log: %s; a damaged log is never replayed\n", fr.describe().c_str());
+    return kExitLogDamaged;
   }
-  if (navs.empty()) {
-    std::fprintf(stderr, "reentry_fsw: no NAV_STATE messages in %s\n", log_path.c_str());
-    return kExitUsage;
+  // Lockstep replay needs every tick from the entry interface on, an answer to each, and the
+  // end of the run: a log without them cannot reproduce the run and is named, never compared.
+  run = check.result(compare);
+  if (run.damaged()) {
+    std::printf("damaged log: %s\n", run.problem().c_str());
+    return kExitLogDamaged;
   }
-  // Lockstep replay needs every tick: a log with holes (lcm-logger starved of CPU drops
-  // datagrams) cannot reproduce the run, so say so instead of reporting a false difference.
-  const std::int64_t first = navs.begin()->first, last = navs.rbegin()->first;
-  const std::int64_t missing = (last - first + 1) - static_cast<std::int64_t>(navs.size());
-  if (missing > 0) {
-    std::int64_t gap = first;
-    while (navs.count(gap) != 0) ++gap;
-    std::printf("incomplete log: %lld of %lld NAV_STATE ticks missing (first at tick %lld); "
-                "replay needs every tick\n",
-                static_cast<long long>(missing), static_cast<long long>(last - first + 1), static_cast<long long>(gap));
+  if (run.incomplete()) {
+    std::printf("incomplete log: %s; replay needs every tick, its command and END_OF_RUN\n", run.problem().c_str());
     return kExitLogIncomplete;
   }
-  std::int64_t compared = 0;
-  bool adopted = false;
-  for (const auto& [tick, n] : navs) {
-    if (!cycle(n, cmd_, status_, adopted)) continue;
-    if (!compare) continue;
-    const auto it = logged.find(tick);
-    if (it == logged.end()) continue;
-    const guidance_cmd_t& r = it->second;
-    const char* field = nullptr;
-    if (!same_bits(cmd_.alpha_rad, r.alpha_rad)) field = "alpha_rad";
-    else if (!same_bits(cmd_.sigma_rad, r.sigma_rad)) field = "sigma_rad";
-    else if (!same_bits(cmd_.beta_rad, r.beta_rad)) field = "beta_rad";
-    else if (cmd_.mode != r.mode) field = "mode";
-    else if (cmd_.plan_seq != r.plan_seq) field = "plan_seq";
-    if (field != nullptr) {
-      std::printf("differs at tick %lld field %s (replayed %.17g, logged %.17g)\n", static_cast<long long>(tick),
-                  field, std::strcmp(field, "alpha_rad") == 0 ? cmd_.alpha_rad : cmd_.sigma_rad,
-                  std::strcmp(field, "alpha_rad") == 0 ? r.alpha_rad : r.sigma_rad);
-      return kExitReplayDiffers;
-    }
-    ++compared;
+  if (!fr.sealed && !allow_unsealed) {
+    std::printf("incomplete log: no seal at the end (its writer did not close it, or it was cut at an event "
+                "boundary, or another tool wrote it): nothing proves it whole; --unsealed replays it anyway\n");
+    return kExitLogIncomplete;
   }
-  if (compare) {
-    if (compared == 0) {
-      std::printf("no logged GUIDANCE_CMD to compare\n");
-      return kExitReplayDiffers;
-    }
-    std::printf("identical (%lld commands)\n", static_cast<long long>(compared));
+  if (fr.seal_dropped > 0) {
+    std::printf("incomplete log: its writer dropped %lld records\n", static_cast<long long>(fr.seal_dropped));
+    return kExitLogIncomplete;
   }
   return kExitOk;
 }
 
-void GuidanceNode::write_status_json(const std::string& path) const {
+/// The first command field that differs between the replayed and the logged command (bit for
+/// bit for the doubles), or nullptr.
+const char* first_differing_field(const guidance_cmd_t& c, const guidance_cmd_t& r, double& a, double& b) {
+  const struct {
+    const char* name;
+    double replayed, logged;
+    bool differs;
+  } fields[] = {
+      {"alpha_rad", c.alpha_rad, r.alpha_rad, !same_bits(c.alpha_rad, r.alpha_rad)},
+      {"sigma_rad", c.sigma_rad, r.sigma_rad, !same_bits(c.sigma_rad, r.sigma_rad)},
+      {"beta_rad", c.beta_rad, r.beta_rad, !same_bits(c.beta_rad, r.beta_rad)},
+      {"mode", static_cast<double>(c.mode), static_cast<double>(r.mode), c.mode != r.mode},
+      {"plan_seq", static_cast<double>(c.plan_seq), static_cast<double>(r.plan_seq), c.plan_seq != r.plan_seq},
+  };
+  for (const auto& f : fields) {
+    if (!f.differs) continue;
+    a = f.replayed;
+    b = f.logged;
+    return f.name;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+int GuidanceNode::run_replay(const std::string& log_path, bool compare, const std::string& out_log,
+                             bool allow_unsealed) {
+  mode_ = RunMode::kReplay;
+  net_ = nullptr;
+  transport::RunLogCheck check;
+  transport::RunCompleteness run;
+  const int verdict = check_replay_log(log_path, compare, allow_unsealed, check, run);
+  if (verdict != kExitOk) return verdict;
+  std::string err;
+  if (!out_log.empty() && !open_log(out_log, RunMode::kReplay, err)) {
+    std::fprintf(stderr, "reentry_fsw: %s\n", err.c_str());
+    return kExitTransport;
+  }
+  std::int64_t compared = 0;
+  int rc_code = kExitOk;
+  const auto& logged = check.commands();
+  for (const auto& [tick, n] : check.navs()) {
+    const std::vector<std::uint8_t>& bytes = check.nav_bytes().at(tick);
+    log_.record("NAV_STATE", bytes.data(), static_cast<int>(bytes.size()));
+    const exec::CycleOutput out = cycle(n);
+    if (!out.emitted) continue;
+    on_cycle(out);
+    if (!compare || rc_code != kExitOk) continue;
+    double a = 0.0, b = 0.0;
+    const char* field = first_differing_field(cmd_, logged.at(tick), a, b);
+    if (field != nullptr) {
+      std::printf("differs at tick %lld field %s (replayed %.17g, logged %.17g)\n", static_cast<long long>(tick), field,
+                  a, b);
+      rc_code = kExitReplayDiffers;
+      if (out_log.empty()) break;
+    }
+    ++compared;
+  }
+  const std::vector<std::uint8_t>& end = check.end_bytes();
+  log_.record("RUN_CONTROL", end.data(), static_cast<int>(end.size()));
+  log_.close();
+  if (compare && rc_code == kExitOk) {
+    std::printf("identical (%lld commands, ticks 0..%lld, END_OF_RUN at tick %lld, event %s)\n",
+                static_cast<long long>(compared), static_cast<long long>(run.last_tick),
+                static_cast<long long>(run.end_tick), transport::end_event_name(run.end_event));
+  }
+  return rc_code;
+}
+
+void GuidanceNode::write_status_json(const std::string& path, int exit_code) const {
   if (path.empty()) return;
   const exec::ExecCounters& c = exec_.counters();
   std::ofstream f(path);
   f << "{\n"
+    << "  \"exit\": \"" << exit_name(exit_code) << "\",\n"
+    << "  \"exit_code\": " << exit_code << ",\n"
     << "  \"planner_runs\": " << c.planner_runs << ",\n"
     << "  \"planner_failures\": " << c.planner_failures << ",\n"
     << "  \"last_plan_status\": \"" << to_string(c.last_plan_status) << "\",\n"
     << "  \"planner_ms_max\": " << c.planner_ms_max << ",\n"
     << "  \"plan_overruns\": " << c.plan_overruns << ",\n"
+    << "  \"plan_waits\": " << c.plan_waits << ",\n"
+    << "  \"plan_wait_ms_max\": " << c.plan_wait_ms_max << ",\n"
+    << "  \"plan_wait_ms_total\": " << c.plan_wait_ms_total << ",\n"
     << "  \"plan_timeouts\": " << c.plan_timeouts << ",\n"
     << "  \"plans_adopted\": " << c.plans_adopted << ",\n"
     << "  \"cycle_us_max\": " << c.cycle_us_max << ",\n"
     << "  \"cycle_overruns\": " << cycle_overruns_ << ",\n"
     << "  \"jitter_us_max\": " << jitter_us_max_ << ",\n"
+    << "  \"commands\": " << commands_published_ << ",\n"
+    << "  \"last_tick\": " << last_tick_answered_ << ",\n"
     << "  \"invalid_nav\": " << c.invalid_nav << ",\n"
+    << "  \"nav_rejected_values\": " << c.nav_rejected_values << ",\n"
+    << "  \"nav_rejected_tick\": " << c.nav_rejected_tick << ",\n"
     << "  \"duplicate_ticks\": " << c.duplicate_ticks << ",\n"
     << "  \"skipped_ticks\": " << c.skipped_ticks << ",\n"
-    << "  \"bad_messages\": " << bad_messages_ << "\n"
+    << "  \"bad_messages\": " << bad_messages_ << ",\n"
+    << "  \"bad_datagrams\": " << (net_ != nullptr ? net_->counters().bad_datagrams : 0) << ",\n"
+    << "  \"rx_kernel_drops\": " << (net_ != nullptr ? net_->counters().kernel_drops : 0) << ",\n"
+    << "  \"log_recorded\": " << log_.recorded() << ",\n"
+    << "  \"log_dropped\": " << log_.dropped() << ",\n"
+    << "  \"link_silent_ms\": " << link_silent_s_ * 1e3 << "\n"
     << "}\n";
 }
 

@@ -1,81 +1,127 @@
-// The guidance process's LCM adapter (DESIGN §11): raw subscriptions decoded into
-// preallocated messages, commands/status encoded into a preallocated buffer and published
-// as raw bytes. Runs the executive one cycle per navigation message (lockstep), on absolute
-// deadlines (realtime), or from a log (replay, driven by the ticks inside the messages).
+// The guidance process's adapter (DESIGN §11): datagrams from our validated UDP-multicast
+// transport (common/transport/udpm.hpp) decoded into preallocated messages, commands/status
+// encoded into a preallocated buffer. Runs the executive one cycle per navigation message
+// (lockstep), on absolute deadlines (realtime), or from a log (replay, driven by the ticks
+// inside the messages). Every message received and sent is recorded in the process's own log.
 #pragma once
-
-#include <lcm/lcm-cpp.hpp>
 
 #include <cstdint>
 #include <reentry/guidance_cmd_t.hpp>
 #include <reentry/guidance_status_t.hpp>
 #include <reentry/nav_state_t.hpp>
 #include <reentry/plan_t.hpp>
+#include <reentry/tracker_status_t.hpp>
 #include <reentry/run_control_t.hpp>
 #include <string>
 
 #include "exec/executive.hpp"
+#include "transport/event_log.hpp"
+#include "transport/udpm.hpp"
 
 namespace reentry::fsw::app {
 
+/// Exit statuses of reentry_fsw (named in its last stderr line and in --status-json).
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitUsage = 2;
-inline constexpr int kExitLinkLoss = 3;
+inline constexpr int kExitLinkLoss = 3;        // no usable NAV_STATE for link_timeout_ticks periods
 inline constexpr int kExitReplayDiffers = 4;
-inline constexpr int kExitLogIncomplete = 5;
+inline constexpr int kExitLogIncomplete = 5;   // ticks, commands or END_OF_RUN missing
+inline constexpr int kExitLogDamaged = 6;      // framing damaged (truncated, garbage, jumps) or inconsistent
+inline constexpr int kExitTransport = 7;       // socket or log file error
+const char* exit_name(int code);
 
 /// Converts a navigation message into the Earth-relative state guidance works with.
 using NavConvertFn = Status (*)(const nav_state_t& nav, RelativeState& out, void* ctx);
 
 enum class RunMode : std::int8_t { kLockstep = 0, kRealtime = 1, kReplay = 2 };
 
+struct LiveOptions {
+  int link_timeout_ticks = 3;       // simulator silent this many GNC periods: link loss
+  double startup_timeout_s = 30.0;  // wait for the first navigation message
+};
+
 class GuidanceNode {
  public:
   GuidanceNode(exec::Executive& exec, NavConvertFn convert, void* convert_ctx, double gnc_rate_hz);
 
-  /// Live run on the network. lockstep: a cycle per nav message, link loss after
-  /// `lockstep_link_timeout_s` without nav; realtime: link loss after 3 periods without nav.
-  int run_live(lcm::LCM& lcm, RunMode mode, double lockstep_link_timeout_s, double startup_timeout_s);
+  /// Records everything received and sent into `path` (start-up; realtime drops rather than waits).
+  bool open_log(const std::string& path, RunMode mode, std::string& error);
+  /// Drains and closes the log (end of run, before the status JSON).
+  void close_log() { log_.close(); }
 
-  /// Replay a log: every logged NAV_STATE (ordered by tick) through the executive, compare
-  /// the computed commands with the logged GUIDANCE_CMD of the same tick. Prints `identical`
-  /// or the first differing tick and field.
-  int run_replay(const std::string& log_path, bool compare);
+  /// Live run on the network until END_OF_RUN / STOP (kExitOk) or link loss (kExitLinkLoss):
+  /// the safe command is then held and published with the link-loss flag before returning.
+  int run_live(transport::UdpmSocket& net, RunMode mode, const LiveOptions& options);
 
-  /// One cycle: nav message -> command + status. False when nothing is to be published.
-  bool cycle(const nav_state_t& nav, guidance_cmd_t& cmd, guidance_status_t& status, bool& plan_adopted);
+  /// Replay a log: checks its seal (unless allow_unsealed), framing and completeness (every
+  /// tick from 0, a GUIDANCE_CMD for each, END_OF_RUN right after the last sample), then runs
+  /// every NAV_STATE through the executive and compares each command with the logged one.
+  /// Prints `identical`, the first differing tick and field, or why the log cannot be
+  /// replayed. out_log: the re-run's log (navs, commands, status, plans, END_OF_RUN).
+  int run_replay(const std::string& log_path, bool compare, const std::string& out_log, bool allow_unsealed = false);
+
+  /// One received datagram (the live loop, and the in-process fuzz test). May publish.
+  void on_datagram(const char* channel, const std::uint8_t* payload, int len);
 
   /// Write the counters as JSON (end of run, ground tool output).
-  void write_status_json(const std::string& path) const;
+  void write_status_json(const std::string& path, int exit_code) const;
 
   std::int32_t bad_messages() const { return bad_messages_; }
+  const guidance_cmd_t& last_cmd() const { return cmd_; }
+  const guidance_status_t& last_status() const { return status_; }
+  std::int64_t commands_published() const { return commands_published_; }
+  bool end_of_run() const { return end_of_run_; }
+  /// Test hook: publish into this socket without a live loop (nullptr: publish nothing).
+  void attach(transport::UdpmSocket* net, RunMode mode) {
+    net_ = net;
+    mode_ = mode;
+  }
 
  private:
-  static void on_nav(const lcm::ReceiveBuffer* rbuf, const std::string& channel, GuidanceNode* self);
-  static void on_run_control(const lcm::ReceiveBuffer* rbuf, const std::string& channel, GuidanceNode* self);
-  void publish_cycle(lcm::LCM& lcm, bool plan_adopted);
-  void publish_safe_status(lcm::LCM& lcm);
+  void handle_nav(const nav_state_t& nav);
+  void handle_run_control(const run_control_t& rc);
+  exec::CycleOutput cycle(const nav_state_t& nav);
+  void on_cycle(const exec::CycleOutput& out);
+  void fill_cmd(const exec::CycleOutput& out);
+  void fill_status(const exec::CycleOutput& out);
+  void fill_tracker_status(const exec::CycleOutput& out);
   void fill_plan(std::int64_t tick);
+  template <class Msg>
+  void publish(const char* channel, const Msg& msg);
+  void publish_heartbeat();
+  void publish_safe(double silent_s);
+  void note_nav_alive() { last_alive_ns_ = now_ns_; }
 
   exec::Executive& exec_;
   NavConvertFn convert_;
   void* convert_ctx_;
   double dt_s_;
   RunMode mode_ = RunMode::kLockstep;
+  transport::UdpmSocket* net_ = nullptr;
+  transport::EventLogWriter log_;
 
   nav_state_t nav_rx_{};
-  nav_state_t nav_newest_{};
+  nav_state_t nav_newest_{};   // realtime: newest plausible sample of the period
   bool nav_pending_ = false;
+  nav_state_t awaiting_nav_{};  // lockstep: the sample whose cycle waits for its plan
   run_control_t rc_rx_{};
   bool end_of_run_ = false;
+  bool have_cmd_ = false;
   guidance_cmd_t cmd_{};
   guidance_status_t status_{};
   plan_t plan_{};
+  tracker_status_t tracker_{};
   std::uint8_t tx_[65000] = {};
   std::int32_t bad_messages_ = 0;
   std::int32_t cycle_overruns_ = 0;
+  std::int64_t commands_published_ = 0;
   double jitter_us_last_ = 0.0;
   double jitter_us_max_ = 0.0;
+  std::int64_t now_ns_ = 0;         // time of the datagram / deadline being handled
+  std::int64_t last_alive_ns_ = 0;  // last usable nav message
+  std::int64_t last_heartbeat_ns_ = 0;
+  std::int64_t last_tick_answered_ = -1;
+  double link_silent_s_ = 0.0;
 };
 
 }  // namespace reentry::fsw::app

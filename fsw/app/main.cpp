@@ -1,7 +1,9 @@
 // reentry_fsw: the guidance process.
-//   reentry_fsw --mission <name|file> [--mode lockstep|realtime] [--replay run.lcm] [--compare]
+//   reentry_fsw --mission <name|file> [--mode lockstep|realtime] [--log fsw.lcm] [--status-json F]
+//               [--link-timeout-ticks N] [--replay run.lcm [--compare] [--replay-log out.lcm]]
 // Wires the core components (nav conversion, entry planner, tracker, rate filters) into the
-// executive and runs the LCM adapter. All allocation happens here, before the loop starts.
+// executive and runs the process adapter. All allocation happens here, before the loop starts.
+// The network is our validated UDP-multicast transport on $LCM_DEFAULT_URL (LCM's wire format).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
@@ -11,6 +13,8 @@
 #include "guidance/guidance_stack.hpp"
 #include "nav/relative_state.hpp"
 #include "reentry/config/mission.hpp"
+#include "transport/monotonic_clock.hpp"
+#include "transport/udpm.hpp"
 
 namespace {
 
@@ -25,15 +29,22 @@ Status convert_nav(const reentry::nav_state_t& nav, RelativeState& out, void*) {
 
 int main(int argc, char** argv) {
   CLI::App cli{"reentry guidance process"};
-  std::string mission_arg, mode = "lockstep", replay, status_json;
-  bool compare = false;
-  double link_timeout_s = 2.0;
+  std::string mission_arg, mode = "lockstep", replay, replay_log, status_json, log_path;
+  bool compare = false, unsealed = false;
+  app::LiveOptions live;
   cli.add_option("--mission", mission_arg, "mission name or TOML file")->required();
   cli.add_option("--mode", mode, "lockstep or realtime")->check(CLI::IsMember({"lockstep", "realtime"}));
   cli.add_option("--replay", replay, "replay the NAV_STATE messages of an LCM log");
   cli.add_flag("--compare", compare, "with --replay: compare with the logged GUIDANCE_CMD");
-  cli.add_option("--status-json", status_json, "write the executive counters here at exit");
-  cli.add_option("--link-timeout", link_timeout_s, "lockstep: seconds without nav before link loss");
+  cli.add_flag("--unsealed", unsealed, "with --replay: accept a log without a seal (not written by our tools)");
+  cli.add_option("--replay-log", replay_log, "with --replay: write the re-run (navs, commands, status) to this log");
+  cli.add_option("--status-json", status_json, "write the executive counters and the exit status here at exit");
+  cli.add_option("--log", log_path, "record every message received and sent in this LCM log");
+  cli.add_option("--link-timeout-ticks", live.link_timeout_ticks,
+                 "GNC periods without a usable NAV_STATE that are a link loss")
+      ->check(CLI::Range(1, 1000));
+  cli.add_option("--startup-timeout", live.startup_timeout_s, "seconds to wait for the first NAV_STATE")
+      ->check(CLI::Range(0.1, 3600.0));
   CLI11_PARSE(cli, argc, argv);
 
   const auto loaded = reentry::config::load_mission(mission_arg);
@@ -52,21 +63,30 @@ int main(int argc, char** argv) {
     return app::kExitUsage;
   }
   auto& executive = stack.executive;
+  executive->set_cycle_clock(&reentry::transport::thread_cpu_ns);  // cycle_us: the cycle's own compute time
   const auto& cfg = stack.config;
   auto node = std::make_unique<app::GuidanceNode>(*executive, &convert_nav, nullptr, cfg.gnc_rate_hz);
   int rc = app::kExitOk;
+  auto net = std::make_unique<reentry::transport::UdpmSocket>();  // outlives the node's use of it
   if (!replay.empty()) {
-    rc = node->run_replay(replay, compare);
+    rc = node->run_replay(replay, compare, replay_log, unsealed);
   } else {
-    lcm::LCM lcm;
-    if (!lcm.good()) {
-      std::fprintf(stderr, "reentry_fsw: LCM initialisation failed\n");
-      return app::kExitUsage;
+    const app::RunMode run_mode = mode == "realtime" ? app::RunMode::kRealtime : app::RunMode::kLockstep;
+    reentry::transport::UdpmUrl url;
+    std::string net_err;
+    if (!reentry::transport::parse_udpm_url(reentry::transport::default_udpm_url(), url, net_err) ||
+        !net->open(url, net_err)) {
+      std::fprintf(stderr, "reentry_fsw: network: %s\n", net_err.c_str());
+      return app::kExitTransport;
     }
-    rc = node->run_live(lcm, mode == "realtime" ? app::RunMode::kRealtime : app::RunMode::kLockstep,
-                        link_timeout_s, 30.0);
+    if (!node->open_log(log_path, run_mode, net_err)) {
+      std::fprintf(stderr, "reentry_fsw: %s\n", net_err.c_str());
+      return app::kExitTransport;
+    }
+    rc = node->run_live(*net, run_mode, live);
+    node->close_log();
   }
-  node->write_status_json(status_json);
+  node->write_status_json(status_json, rc);
   executive->shutdown();
   return rc;
 }

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "numerics/status.hpp"
+#include "tracker/tracker_phase.hpp"
 
 namespace reentry::fsw {
 
@@ -48,6 +49,29 @@ enum class Phase : std::int8_t {
   kSafe = 4,                // link loss / invalid data: safe command held
 };
 
+/// The tracker's internal state, for telemetry (tracker_status_t).
+struct TrackerTelemetry {
+  TrackerPhase phase = TrackerPhase::kInitialDescent;
+  double drag_ref_mps2 = 0.0;
+  double drag_err_mps2 = 0.0;
+  double heading_err_rad = 0.0;
+  double drag_integral_mps = 0.0;        // int (D - D_ref) dt
+  double drag_ratio = 1.0;               // sensed drag / model drag (K)
+  double lift_over_drag_ratio = 1.0;     // sensed L/D / model L/D
+  double corridor_half_width_rad = 0.0;  // heading corridor (0 outside the corridor phase)
+  double terminal_increment_mps2 = 0.0;  // c of the terminal range control
+  double omega_radps = 0.0;              // drag-loop natural frequency this cycle
+  double time_to_go_s = 0.0;
+  double mean_bank_rad = 0.0;
+  double cross_track_m = 0.0;            // from the arrival line (> 0: the line is to the right)
+  double along_track_m = 0.0;            // to the aim point along the line
+  bool reversing = false;
+  bool final_reversal_done = false;
+  bool final_correction_done = false;
+  bool pullout_arrested = false;
+  bool saturated = false;
+};
+
 /// Navigation-derived state relative to the rotating Earth (what guidance works with).
 struct RelativeState {
   double t_s = 0.0;
@@ -66,21 +90,6 @@ struct RelativeState {
 
 /// x bounded to [lo, hi] (lo <= hi); a NaN passes through (the callers check finiteness).
 inline double clamp(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
-
-/// Planned fraction of every path-constraint limit (3 % design margin): the planner's
-/// corridor bounds and the tracker's sensed-constraint drag limiter use the same fraction.
-inline constexpr double kConstraintMargin = 0.97;
-
-/// Lateral corridor phase: over the last kLateralCorridorSpanFraction of the entry-to-TAEM
-/// energy span the tracker keeps the vehicle on the arrival great circle with a heading
-/// corridor instead of the planned reversal; the planner's reduced-order trajectory flies
-/// that circle there too, so that planned and flown path lengths agree.
-inline constexpr double kLateralCorridorSpanFraction = 0.30;
-
-/// Terminal phase: over the last kTerminalSpanFraction of the energy span the tracker
-/// controls the range to go with a drag increment and no replans are made (DESIGN §6); the
-/// planner's ranging alpha (which replans apply) ends there.
-inline constexpr double kTerminalSpanFraction = 0.25;
 
 /// A planned reference over energy, produced by the planner, consumed by the tracker.
 /// Points are ordered by decreasing energy (index 0 = planning state, last = TAEM).

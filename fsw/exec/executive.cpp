@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace reentry::fsw::exec {
 namespace {
@@ -11,11 +12,6 @@ std::int64_t now_ns() {
              std::chrono::steady_clock::now().time_since_epoch())
       .count();
 }
-
-// Minimum spacing of drag-error replans, so a persistent error does not request every cycle.
-constexpr double kDragErrorReplanSpacing_s = 5.0;
-// Upper bound on spin iterations of one lockstep wait (the wall-time limit normally ends it).
-constexpr long kMaxWaitSpins = 2000000000L;
 
 }  // namespace
 
@@ -42,10 +38,55 @@ bool Executive::finite_state(const RelativeState& s) {
   return true;
 }
 
+bool Executive::tick_in_window(std::int64_t tick) const {
+  if (tick < 0 || tick > cfg_.nav.max_tick) return false;
+  if (!have_last_nav_) return true;
+  // Both ticks are >= 0, so the difference cannot overflow.
+  return tick > last_tick_ && tick - last_tick_ <= cfg_.nav.max_tick_gap;
+}
+
+NavVerdict Executive::validate(const NavInput& nav) const {
+  const NavWindows& w = cfg_.nav;
+  const double dt = dt_s();
+  // Tick and time: ticks count from 0 at the entry interface and t_s = tick / f, so a sample
+  // whose time does not match its tick carries a corrupted tick or time; neither can be trusted.
+  if (nav.tick < 0 || nav.tick > w.max_tick) return NavVerdict::kRejectedTick;
+  // The tick already accepted: nothing new, whatever it carries (the adapter answers again).
+  if (have_last_nav_ && nav.tick == last_tick_) return NavVerdict::kDuplicate;
+  if (!std::isfinite(nav.state.t_s) ||
+      std::fabs(nav.state.t_s - static_cast<double>(nav.tick) * dt) > w.time_tolerance_ticks * dt) {
+    return NavVerdict::kRejectedTick;
+  }
+  if (!tick_in_window(nav.tick)) return NavVerdict::kRejectedTick;
+  // Values: finite and inside the absolute windows.
+  const RelativeState& s = nav.state;
+  if (!nav.values_valid || !finite_state(s)) return NavVerdict::kRejectedValues;
+  if (s.altitude_m < w.altitude_min_m || s.altitude_m > w.altitude_max_m || !(s.velocity_mps >= 0.0) ||
+      s.velocity_mps > w.velocity_max_mps || std::fabs(s.drag_mps2) > w.specific_force_max_mps2 ||
+      std::fabs(s.lift_mps2) > w.specific_force_max_mps2) {
+    return NavVerdict::kRejectedValues;
+  }
+  // Rates from the last accepted sample: a jump is rejected, the reference is kept.
+  if (have_last_nav_) {
+    const double elapsed_s = static_cast<double>(nav.tick - last_tick_) * dt;
+    if (std::fabs(s.altitude_m - last_state_.altitude_m) > w.climb_rate_max_mps * elapsed_s ||
+        std::fabs(s.velocity_mps - last_state_.velocity_mps) > w.speed_rate_max_mps2 * elapsed_s) {
+      return NavVerdict::kRejectedValues;
+    }
+  }
+  return NavVerdict::kAccepted;
+}
+
 Status Executive::init(const ExecConfig& cfg, PlanComputer& planner, CommandLaw& law) {
   if (initialised_) return Status::kInvalidInput;
   if (!(cfg.gnc_rate_hz > 0.0) || cfg.plan_latency_ticks < 1 || !(cfg.replan_period_s > 0.0) ||
       !(cfg.plan_wait_limit_s > 0.0)) {
+    return Status::kInvalidInput;
+  }
+  const NavWindows& w = cfg.nav;
+  if (!(w.time_tolerance_ticks > 0.0 && w.time_tolerance_ticks <= 0.5) || w.max_tick_gap < 1 || w.max_tick < 1 ||
+      !(w.altitude_max_m > w.altitude_min_m) || !(w.velocity_max_mps > 0.0) || !(w.specific_force_max_mps2 > 0.0) ||
+      !(w.climb_rate_max_mps > 0.0) || !(w.speed_rate_max_mps2 > 0.0)) {
     return Status::kInvalidInput;
   }
   cfg_ = cfg;
@@ -95,10 +136,12 @@ void Executive::request_plan(std::int64_t tick, const RelativeState& s) {
   last_request_t_s_ = s.t_s;
   ++counters_.plan_requests;
   if (cfg_.mode == PlanMode::kSynchronous) {
-    const std::int64_t t0 = now_ns();
+    const std::int64_t t0 = now_ns(), c0 = cycle_now_ns();
     pending_.id = req.id;
     pending_.status = planner_->compute(req.from, pending_.profile);
-    pending_.compute_ms = static_cast<double>(now_ns() - t0) * 1e-6;
+    const std::int64_t t1 = now_ns();
+    inline_plan_ns_ += cycle_now_ns() - c0;  // the planner's time, not the cycle's
+    pending_.compute_ms = static_cast<double>(t1 - t0) * 1e-6;
     pending_ready_ = true;
     in_flight_ = true;
     return;
@@ -109,12 +152,19 @@ void Executive::request_plan(std::int64_t tick, const RelativeState& s) {
   expected_id_ = req.id;
 }
 
-void Executive::adopt(PlanResult& r, double t_s, CycleOutput& out) {
+void Executive::adopt(PlanResult& r, std::int64_t tick, double t_s, CycleOutput& out) {
   in_flight_ = false;
   pending_ready_ = false;
   ++counters_.planner_runs;
   counters_.planner_ms_last = r.compute_ms;
   if (r.compute_ms > counters_.planner_ms_max) counters_.planner_ms_max = r.compute_ms;
+  // Budget: the plan had L ticks of real time. Lockstep/synchronous runs are not real time,
+  // so the compute time decides; in realtime a plan adopted after k + L is late as well.
+  const double budget_ms = 1e3 * static_cast<double>(cfg_.plan_latency_ticks) * dt_s();
+  if (r.compute_ms > budget_ms || (cfg_.mode == PlanMode::kRealtime && tick > due_tick_)) {
+    ++counters_.plan_overruns;
+    cycle_flags_ |= kHealthPlanOverrun;
+  }
   counters_.last_plan_status = r.status;
   // A range-too-long plan is the maximum-drag profile inside the constraints: the shortest
   // range the vehicle can fly. It is flown (flagged) rather than no plan or a stale one,
@@ -150,84 +200,149 @@ bool Executive::pop_expected() {
   return false;
 }
 
-void Executive::try_adopt(std::int64_t tick, double t_s, CycleOutput& out) {
-  if (!in_flight_) return;
+bool Executive::try_adopt(std::int64_t tick, double t_s, CycleOutput& out) {
+  if (!in_flight_) return true;
   if (cfg_.mode == PlanMode::kRealtime) {
-    if (pending_ready_ || pop_expected()) adopt(pending_, t_s, out);
-    return;
+    if (pending_ready_ || pop_expected()) adopt(pending_, tick, t_s, out);
+    return true;
   }
-  if (tick < due_tick_) return;
+  if (tick < due_tick_) return true;
   if (cfg_.mode == PlanMode::kLockstep && !pending_ready_ && !pop_expected()) {
-    // Late plan: wait (bounded) so that the run stays deterministic, and count the overrun.
-    ++counters_.plan_overruns;
-    cycle_flags_ |= kHealthPlanOverrun;
-    waits_started_.fetch_add(1, std::memory_order_acq_rel);
-    const std::int64_t deadline = now_ns() + static_cast<std::int64_t>(cfg_.plan_wait_limit_s * 1e9);
-    for (long spin = 0; spin < kMaxWaitSpins; ++spin) {
-      if (pop_expected()) break;
-      if (now_ns() > deadline) break;
-      std::this_thread::yield();
-    }
-    if (!pending_ready_) {
-      ++counters_.plan_timeouts;
-      cycle_flags_ |= kHealthPlanTimeout;
-      in_flight_ = false;  // abandoned: its result is discarded when it arrives
-      return;
-    }
+    // Late plan: the cycle waits for it (the caller resumes), so the run stays deterministic.
+    if (!awaiting_) return false;
+    if (now_ns() - wait_start_ns_ <= static_cast<std::int64_t>(cfg_.plan_wait_limit_s * 1e9)) return false;
+    ++counters_.plan_timeouts;
+    cycle_flags_ |= kHealthPlanTimeout;
+    in_flight_ = false;  // abandoned: its result is discarded when it arrives
+    return true;
   }
-  if (pending_ready_) adopt(pending_, t_s, out);
+  if (pending_ready_) adopt(pending_, tick, t_s, out);
+  return true;
 }
 
-CycleOutput Executive::step(const NavInput& nav) {
-  const std::int64_t t_start = now_ns();
+void Executive::count_skipped(std::int64_t tick) {
+  // Ticks never received between the highest one seen and this one (both >= 0: no overflow).
+  if (last_seen_tick_ >= 0 && tick - 1 > last_seen_tick_) {  // tick >= 0: no overflow
+    const std::int64_t gap = tick - last_seen_tick_ - 1;
+    const std::int64_t room = std::numeric_limits<int>::max() - counters_.skipped_ticks;
+    counters_.skipped_ticks += static_cast<int>(gap < room ? gap : room);
+  }
+  if (tick > last_seen_tick_) last_seen_tick_ = tick;
+}
+
+CycleOutput Executive::held_output(const NavInput& nav, NavVerdict verdict) {
+  ++counters_.invalid_nav;
   CycleOutput out;
-  cycle_flags_ = 0;
+  out.tick = nav.tick;
+  out.t_s = nav.state.t_s;
+  out.nav_verdict = verdict;
+  if (verdict == NavVerdict::kRejectedTick) {
+    ++counters_.nav_rejected_tick;
+    out.emitted = false;  // an implausible tick is not answered: the answer could be taken for a real one
+    return out;
+  }
+  ++counters_.nav_rejected_values;
+  count_skipped(nav.tick);
+  out = last_valid_;
+  out.emitted = true;
+  out.tick = nav.tick;
+  out.t_s = nav.state.t_s;
+  out.plan_adopted = false;
+  out.awaiting_plan = false;
+  out.nav_verdict = verdict;
+  out.health_flags = last_valid_.health_flags | kHealthNavInvalid;
+  return out;
+}
+
+std::int64_t Executive::cycle_now_ns() const { return cycle_clock_ns_ != nullptr ? cycle_clock_ns_() : now_ns(); }
+
+CycleOutput Executive::step(const NavInput& nav) {
+  const std::int64_t t_start = cycle_now_ns();
+  CycleOutput out;
   out.tick = nav.tick;
   out.t_s = nav.state.t_s;
   if (!initialised_) {
     out.emitted = false;
     return out;
   }
+  if (awaiting_) {
+    // A lockstep cycle waits for its plan: its sample was accepted, a repeat is a duplicate,
+    // anything else cannot belong to this lockstep exchange.
+    if (nav.tick == awaiting_nav_.tick) {
+      ++counters_.duplicate_ticks;
+      out.nav_verdict = NavVerdict::kDuplicate;
+      out.awaiting_plan = true;
+      return out;
+    }
+    ++counters_.invalid_nav;
+    ++counters_.nav_rejected_tick;
+    out.nav_verdict = NavVerdict::kRejectedTick;
+    out.awaiting_plan = true;
+    return out;
+  }
+  cycle_flags_ = 0;
+  inline_plan_ns_ = 0;
 
   // 1. Validate the navigation sample.
-  bool valid = true;
-  if (have_last_nav_ && nav.tick == last_tick_) {
+  const NavVerdict verdict = validate(nav);
+  if (verdict == NavVerdict::kDuplicate) {
     ++counters_.duplicate_ticks;
     out.emitted = false;
+    out.nav_verdict = verdict;
     return out;  // duplicate: the command for this tick was already produced
   }
-  if (have_last_nav_ && nav.tick < last_tick_) valid = false;  // tick going backwards
-  if (valid && !finite_state(nav.state)) {
-    valid = false;
-    if (!have_last_nav_ || nav.tick > last_tick_) {
-      if (have_last_nav_ && nav.tick > last_tick_ + 1) counters_.skipped_ticks += static_cast<int>(nav.tick - last_tick_ - 1);
-      last_tick_ = nav.tick;  // the tick was seen (its data were bad)
-      have_last_nav_ = true;
-    }
-  }
-  if (valid && have_last_nav_ && have_last_time_ && nav.state.t_s <= last_t_s_) valid = false;  // time going backwards
-  if (!valid) {
-    ++counters_.invalid_nav;
-    out = last_valid_;
-    out.emitted = true;
-    out.tick = nav.tick;
-    out.t_s = nav.state.t_s;
-    out.plan_adopted = false;
-    out.health_flags = last_valid_.health_flags | kHealthNavInvalid;
+  if (verdict != NavVerdict::kAccepted) {
+    // Rejected: nothing of the sample is kept (the windows' reference stays the last accepted
+    // sample, so the next good one is accepted again); the last valid command is held.
+    out = held_output(nav, verdict);
     finish_timing(t_start);
     return out;
   }
-  if (have_last_nav_ && nav.tick > last_tick_ + 1) {
-    counters_.skipped_ticks += static_cast<int>(nav.tick - last_tick_ - 1);
-  }
+  count_skipped(nav.tick);
   have_last_nav_ = true;
-  have_last_time_ = true;
   last_tick_ = nav.tick;
-  last_t_s_ = nav.state.t_s;
+  last_state_ = nav.state;
 
-  // 2. Adopt a due plan.
-  try_adopt(nav.tick, nav.state.t_s, out);
+  // 2. Adopt a due plan (lockstep: wait for it if it is late).
+  if (!try_adopt(nav.tick, nav.state.t_s, out)) {
+    awaiting_ = true;
+    awaiting_nav_ = nav;
+    awaiting_out_ = out;
+    wait_start_ns_ = now_ns();
+    cycle_ns_so_far_ = cycle_now_ns() - t_start;
+    ++counters_.plan_waits;
+    waits_started_.fetch_add(1, std::memory_order_acq_rel);
+    CycleOutput wait;
+    wait.tick = nav.tick;
+    wait.t_s = nav.state.t_s;
+    wait.awaiting_plan = true;
+    return wait;
+  }
+  return finish_cycle(nav, out, t_start);
+}
 
+CycleOutput Executive::resume() {
+  CycleOutput out;
+  if (!awaiting_) return out;
+  const std::int64_t t_start = cycle_now_ns();
+  const std::int64_t wall_now = now_ns();
+  CycleOutput cycle = awaiting_out_;
+  if (!try_adopt(awaiting_nav_.tick, awaiting_nav_.state.t_s, cycle)) {
+    out.tick = awaiting_nav_.tick;
+    out.t_s = awaiting_nav_.state.t_s;
+    out.awaiting_plan = true;
+    return out;
+  }
+  awaiting_ = false;
+  counters_.plan_wait_ms_last = static_cast<double>(wall_now - wait_start_ns_) * 1e-6;
+  counters_.plan_wait_ms_total += counters_.plan_wait_ms_last;
+  if (counters_.plan_wait_ms_last > counters_.plan_wait_ms_max) counters_.plan_wait_ms_max = counters_.plan_wait_ms_last;
+  // The cycle's own time: before the wait plus from here on (the wait itself is excluded).
+  return finish_cycle(awaiting_nav_, cycle, t_start - cycle_ns_so_far_);
+}
+
+CycleOutput Executive::finish_cycle(const NavInput& nav, CycleOutput& out, std::int64_t t_start) {
+  out.nav_verdict = NavVerdict::kAccepted;
   // 3-4. Track and filter.
   LawOutput law;
   const Status law_status = law_->step(nav.state, dt_s(), has_profile_, law);
@@ -245,6 +360,7 @@ CycleOutput Executive::step(const NavInput& nav) {
   out.drag_ref_mps2 = law.drag_ref_mps2;
   out.drag_err_mps2 = law.drag_err_mps2;
   out.heading_err_rad = law.heading_err_rad;
+  out.tracker = law.tracker;
   if (law_status == Status::kOk && std::isfinite(law.lift_over_drag_scale) && law.lift_over_drag_scale > 0.0) {
     lift_over_drag_scale_ = law.lift_over_drag_scale;
   }
@@ -273,7 +389,7 @@ CycleOutput Executive::step(const NavInput& nav) {
       want = true;
     } else if (has_profile_ && law.drag_ref_mps2 > 0.0 &&
                std::fabs(law.drag_err_mps2) > cfg_.replan_drag_error_frac * law.drag_ref_mps2 &&
-               s.t_s - last_request_t_s_ >= kDragErrorReplanSpacing_s) {
+               s.t_s - last_request_t_s_ >= cfg_.drag_error_replan_spacing_s) {
       want = true;
     }
     if (want) request_plan(nav.tick, s);
@@ -288,7 +404,8 @@ CycleOutput Executive::step(const NavInput& nav) {
 }
 
 void Executive::finish_timing(std::int64_t t_start_ns) {
-  counters_.cycle_us_last = static_cast<double>(now_ns() - t_start_ns) * 1e-3;
+  counters_.cycle_us_last = static_cast<double>(cycle_now_ns() - t_start_ns - inline_plan_ns_) * 1e-3;
+  inline_plan_ns_ = 0;
   if (counters_.cycle_us_last > counters_.cycle_us_max) counters_.cycle_us_max = counters_.cycle_us_last;
 }
 

@@ -18,7 +18,8 @@ namespace reentry::fsw::exec {
 
 /// How plans are computed and adopted.
 enum class PlanMode : std::int8_t {
-  kLockstep = 0,     // worker thread; plan requested at tick k adopted exactly at k + L (waits if late)
+  kLockstep = 0,     // worker thread; plan requested at tick k adopted exactly at k + L: when it is
+                     // late, step() returns awaiting_plan and the caller resumes the cycle (a plan wait)
   kRealtime = 1,     // worker thread; plan adopted at the first cycle after it is ready
   kSynchronous = 2,  // computed inline at the request, adopted at k + L (same results as lockstep)
 };
@@ -26,12 +27,40 @@ enum class PlanMode : std::int8_t {
 /// Health flag bits (guidance_cmd_t / guidance_status_t health_flags).
 enum HealthFlag : std::int32_t {
   kHealthNavInvalid = 1 << 0,     // last nav rejected: last valid command held
-  kHealthPlanOverrun = 1 << 1,    // a plan was not ready at its adoption tick
+  kHealthPlanOverrun = 1 << 1,    // the plan adopted in this cycle took longer than its budget L / f
   kHealthPlanTimeout = 1 << 2,    // bounded wait for a plan expired; plan discarded
   kHealthPlannerFailed = 1 << 3,  // last plan returned a non-ok status (not adopted)
   kHealthNoPlan = 1 << 4,         // no plan adopted yet
   kHealthLinkLoss = 1 << 5,       // set by the process adapter on link loss
   kHealthRangeTooLong = 1 << 6,   // the active plan is the maximum-drag best effort: TAEM will be overflown
+  kHealthPlanWait = 1 << 7,       // lockstep: the cycle of this tick waits for its plan (status heartbeat)
+};
+
+/// Why a navigation sample was not used (CycleOutput::nav_verdict).
+enum class NavVerdict : std::int8_t {
+  kAccepted = 0,
+  kDuplicate = 1,       // tick already accepted: nothing new (the adapter may repeat its answer)
+  kRejectedValues = 2,  // tick and time plausible, values not: answered with the held command, flagged
+  kRejectedTick = 3,    // tick or time implausible (negative, backwards, too far ahead, t_s != tick / f,
+                        // or a new tick while a lockstep cycle waits): not answered, nothing adopted
+};
+
+/// Plausibility windows every navigation sample must pass before guidance uses it. A sample
+/// outside any window is rejected, never adopted; the rate windows are measured from the last
+/// accepted sample and widen with the ticks since, so one bad message cannot latch the
+/// executive (the next good sample is inside them again). Defaults are far outside any entry
+/// flight (X-33/HORUS/X-38/Orbiter peak at < 4 g, < 8 km/s) and tight enough to reject
+/// corrupted or spoofed samples.
+struct NavWindows {
+  double time_tolerance_ticks = 0.25;     // |t_s - tick / f| bound [ticks], (0, 0.5]: nav time is tick / f
+  std::int64_t max_tick_gap = 100;        // largest tick step from the last accepted sample [ticks], >= 1
+  std::int64_t max_tick = 1000000000;     // no run is longer [ticks] (3 years at 10 Hz): also bounds a first sample
+  double altitude_min_m = -10000.0;       // [m], below any landing site
+  double altitude_max_m = 1.0e6;          // [m], far above an entry interface (120-150 km)
+  double velocity_max_mps = 15000.0;      // Earth-relative speed [m/s] (escape speed 11.2 km/s + margin)
+  double specific_force_max_mps2 = 490.0; // |drag|, |lift| sensed [m/s^2] (50 g)
+  double climb_rate_max_mps = 15000.0;    // |dh/dt| between accepted samples [m/s]
+  double speed_rate_max_mps2 = 600.0;     // |dV/dt| between accepted samples [m/s^2] (drag + gravity < 60 g)
 };
 
 /// The planner, as seen by the executive. Called on the worker thread (or inline in
@@ -51,6 +80,7 @@ struct LawOutput {
   double drag_err_mps2 = 0.0;
   double heading_err_rad = 0.0;
   double lift_over_drag_scale = 1.0;  // in-flight L/D estimate over the model's, for the planner
+  TrackerTelemetry tracker;           // the law's internal state (telemetry only)
 };
 
 class CommandLaw {
@@ -66,16 +96,19 @@ struct ExecConfig {
   int plan_latency_ticks = 5;               // L (>= 1: requested after the law step of tick k)
   double replan_period_s = 50.0;
   double replan_drag_error_frac = 0.15;
+  double drag_error_replan_spacing_s = 5.0;  // least spacing of drag-error replans (a persistent error does not request every cycle)
   double initial_descent_drag_mps2 = 0.05 * 9.80665;  // replan from the captured state once sensed drag exceeds this
   double plan_wait_limit_s = 30.0;          // bound of the lockstep wait for a late plan
   double replan_floor_energy_Jpkg = 0.0;    // no new plans below this energy (terminal phase)
   PlanMode mode = PlanMode::kLockstep;
+  NavWindows nav;
 };
 
 /// One navigation sample, already converted to the Earth-relative state by the adapter.
 struct NavInput {
   std::int64_t tick = 0;
-  RelativeState state;
+  RelativeState state;          // state.t_s is the message time even when values_valid is false
+  bool values_valid = true;     // false: the adapter could not convert the message (non-finite, r = 0)
 };
 
 struct CycleOutput {
@@ -91,12 +124,19 @@ struct CycleOutput {
   double drag_err_mps2 = 0.0;    // sensed drag referred to the reference alpha, minus the reference
   double heading_err_rad = 0.0;
   bool plan_adopted = false;     // a plan was adopted in this cycle
+  bool awaiting_plan = false;    // lockstep: the plan due at this tick is late; call resume()
+  NavVerdict nav_verdict = NavVerdict::kAccepted;
+  TrackerTelemetry tracker;      // the law's internal state this cycle (telemetry only)
 };
 
 struct ExecCounters {
-  double cycle_us_last = 0.0;
+  double cycle_us_last = 0.0;     // the cycle's own compute time: plan waits and inline plans excluded
   double cycle_us_max = 0.0;
-  int plan_overruns = 0;
+  int plan_overruns = 0;          // plans that took longer than their budget L / f (realtime: or came late)
+  int plan_waits = 0;             // lockstep: cycles that waited for a plan not ready at k + L
+  double plan_wait_ms_last = 0.0; // wall time of the last plan wait
+  double plan_wait_ms_max = 0.0;
+  double plan_wait_ms_total = 0.0;
   int plan_timeouts = 0;
   int planner_runs = 0;
   int planner_failures = 0;
@@ -105,7 +145,9 @@ struct ExecCounters {
   double planner_ms_max = 0.0;
   double plan_latency_ms = 0.0;   // request to adoption, wall time
   double plan_adopted_t_s = -1.0; // simulation time of the last adoption
-  int invalid_nav = 0;
+  int invalid_nav = 0;            // every rejected sample (both verdicts below)
+  int nav_rejected_values = 0;    // of which: values outside a window (answered with the held command)
+  int nav_rejected_tick = 0;      // of which: tick / time implausible (not answered)
   int duplicate_ticks = 0;
   int skipped_ticks = 0;
   int plans_adopted = 0;
@@ -128,14 +170,33 @@ class Executive {
   Status init(const ExecConfig& cfg, PlanComputer& planner, CommandLaw& law);
   /// Stops and joins the worker thread.
   void shutdown();
+  /// Clock of the cycle-time figures [ns] (start-up): steady wall time by default; the process
+  /// adapter passes its thread's CPU-time clock, so that cycle_us is the cycle's own compute
+  /// time and not the time the OS gave other threads while the cycle ran.
+  void set_cycle_clock(std::int64_t (*clock_ns)()) { cycle_clock_ns_ = clock_ns; }
 
+  /// One cycle on a navigation sample. In lockstep, when the plan due at this tick is not
+  /// ready, returns with awaiting_plan set and nothing emitted: the caller keeps its I/O
+  /// going (heartbeats, link supervision) and calls resume() until the cycle completes.
   CycleOutput step(const NavInput& nav);
+  /// Continues the cycle that is waiting for its plan (no-op output when none is waiting).
+  /// Never blocks: returns awaiting_plan again while the plan is late, or the completed
+  /// cycle once it is adopted (or abandoned after plan_wait_limit_s).
+  CycleOutput resume();
+  bool awaiting_plan() const { return awaiting_; }
+  /// The tick whose cycle waits for its plan (valid while awaiting_plan()).
+  std::int64_t awaiting_tick() const { return awaiting_nav_.tick; }
+  /// True when a sample with this tick would pass the tick window (used by the realtime
+  /// adapter to pick the newest plausible sample of a burst).
+  bool tick_in_window(std::int64_t tick) const;
 
   const ExecCounters& counters() const { return counters_; }
   const ReferenceProfile& active_profile() const { return active_; }
   bool has_profile() const { return has_profile_; }
   /// Number of lockstep waits started (observable from another thread: test hook).
   int waits_started() const { return waits_started_.load(std::memory_order_acquire); }
+  /// The last command emitted for an accepted sample (what is held on rejection / link loss).
+  const CycleOutput& last_valid_output() const { return last_valid_; }
 
  private:
   struct PlanRequest {
@@ -150,12 +211,18 @@ class Executive {
   };
 
   static bool finite_state(const RelativeState& s);
+  NavVerdict validate(const NavInput& nav) const;
+  CycleOutput held_output(const NavInput& nav, NavVerdict verdict);
+  CycleOutput finish_cycle(const NavInput& nav, CycleOutput& out, std::int64_t t_start_ns);
   void worker_loop();
-  void try_adopt(std::int64_t tick, double t_s, CycleOutput& out);
-  void adopt(PlanResult& r, double t_s, CycleOutput& out);
+  // False when a lockstep plan is due and not ready (the cycle must wait).
+  bool try_adopt(std::int64_t tick, double t_s, CycleOutput& out);
+  void adopt(PlanResult& r, std::int64_t tick, double t_s, CycleOutput& out);
   void request_plan(std::int64_t tick, const RelativeState& s);
   bool pop_expected();
   void finish_timing(std::int64_t t_start_ns);
+  std::int64_t cycle_now_ns() const;
+  void count_skipped(std::int64_t tick);
   double dt_s() const { return 1.0 / cfg_.gnc_rate_hz; }
 
   ExecConfig cfg_;
@@ -195,10 +262,18 @@ class Executive {
   bool has_profile_ = false;
 
   bool have_last_nav_ = false;
-  std::int64_t last_tick_ = 0;
-  double last_t_s_ = 0.0;
-  bool have_last_time_ = false;
+  std::int64_t last_tick_ = 0;     // last accepted tick (reference of the windows)
+  std::int64_t last_seen_tick_ = -1;  // highest tick accepted or answered (skip accounting)
+  RelativeState last_state_;       // last accepted state
   ExecCounters counters_;
+  // Lockstep plan wait: the accepted sample whose cycle waits, and the cycle's time so far.
+  bool awaiting_ = false;
+  NavInput awaiting_nav_;
+  CycleOutput awaiting_out_;
+  std::int64_t wait_start_ns_ = 0;
+  std::int64_t cycle_ns_so_far_ = 0;  // cycle clock
+  std::int64_t (*cycle_clock_ns_)() = nullptr;
+  std::int64_t inline_plan_ns_ = 0;  // synchronous plan computed inside this cycle (excluded)
   CycleOutput last_valid_;
   double last_drag_err_ = 0.0;
   double last_drag_ref_ = 0.0;

@@ -3,13 +3,17 @@
 #include <memory>
 
 #include "alpha_planner/alpha_planner.hpp"
+#include "guidance/mission_adapter.hpp"
 
 namespace reentry::fsw {
 
 std::string resolve_alpha_profile(config::Mission& mission) {
   if (!mission.alpha_profile_planned || !mission.alpha_profile.x.empty()) return {};
+  auto models = std::make_unique<OnboardModels>();
+  const std::string err = onboard_models_from_mission(mission, *models);
+  if (!err.empty()) return err;
   auto planner = std::make_unique<AlphaPlanner>();
-  Status st = planner->init(mission);
+  Status st = planner->init(*models, to_guidance_mission(mission));
   if (st != Status::kOk) return std::string("alpha planner init: ") + to_string(st);
   auto result = std::make_unique<AlphaPlanResult>();
   st = planner->plan(AlphaPlanParams{}, *result);

@@ -1,6 +1,7 @@
 #include "guidance/guidance_stack.hpp"
 
 #include "guidance/alpha_profile_source.hpp"
+#include "guidance/mission_adapter.hpp"
 #include "reentry/config/mission.hpp"
 
 namespace reentry::fsw {
@@ -21,6 +22,7 @@ Status TrackerLaw::step(const RelativeState& s, double dt_s, bool /*has_profile*
   out.drag_err_mps2 = last.drag_err_mps2;
   out.heading_err_rad = last.heading_err_rad;
   out.lift_over_drag_scale = last.lift_over_drag_scale;
+  out.tracker = last.telemetry;
   return Status::kOk;
 }
 
@@ -36,12 +38,16 @@ std::string GuidanceStack::create(const config::Mission& mission, exec::PlanMode
   }
   const config::Mission& m = *source;
   const double dt_s = 1.0 / m.guidance.gnc_rate_hz;
+  auto setup = std::make_unique<GuidanceSetup>();
+  const std::string err = make_guidance_setup(m, *setup);
+  if (!err.empty()) return err;
   planner = std::make_unique<PlannerAdapter>();
   law = std::make_unique<TrackerLaw>();
   executive = std::make_unique<exec::Executive>();
-  Status st = planner->planner.init(m);
+  const GuidanceSetup& g = *setup;
+  Status st = planner->planner.init(g.models, g.alpha_profile, g.mission, g.params);
   if (st != Status::kOk) return std::string("planner init: ") + to_string(st);
-  st = law->tracker.init(m);
+  st = law->tracker.init(g.models, g.alpha_profile, g.mission, g.params);
   if (st != Status::kOk) return std::string("tracker init: ") + to_string(st);
   st = law->alpha_filter.init(m.constraints.alpha_rate_max_radps, m.constraints.alpha_accel_max_radps2, dt_s);
   if (st != Status::kOk) return std::string("alpha filter init (constraints.alpha_rate/accel): ") + to_string(st);
@@ -52,6 +58,7 @@ std::string GuidanceStack::create(const config::Mission& mission, exec::PlanMode
   config.plan_latency_ticks = m.guidance.plan_latency_ticks;
   config.replan_period_s = m.guidance.replan_period_s;
   config.replan_drag_error_frac = m.guidance.replan_drag_error_frac;
+  config.drag_error_replan_spacing_s = m.guidance.drag_error_replan_spacing_s;
   config.initial_descent_drag_mps2 = m.guidance.initial_descent_drag_mps2;
   config.replan_floor_energy_Jpkg = law->tracker.terminal_energy_Jpkg();
   config.mode = mode;

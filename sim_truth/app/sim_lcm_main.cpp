@@ -1,13 +1,19 @@
 // reentry_sim_lcm: the truth simulator as an LCM process (sim_truth/app).
 //   publishes NAV_STATE (tick 0 at the entry interface) and TRUTH every GNC tick,
-//   lockstep: waits for the GUIDANCE_CMD of tick k (bounded) before advancing to tick k+1,
+//   lockstep: waits for the GUIDANCE_CMD of tick k before advancing to tick k+1,
 //   realtime: paces itself with absolute deadlines and applies the newest command,
 //   applies commands after --transport-delay-ticks ticks, ends at an event with a
 //   RUN_CONTROL END_OF_RUN summary and (optionally) a JSON summary file.
-#include <lcm/lcm-cpp.hpp>
+// Commands are accepted only when they decode, are finite and inside plausibility windows,
+// and answer a tick the simulator has published (never one from the future); the last
+// accepted command is held otherwise. A guidance process silent for --link-timeout-ticks GNC
+// periods ends the run (event link_loss, exit 3). Network: our validated UDP-multicast
+// transport on $LCM_DEFAULT_URL; --log records every message sent and received.
 #include <time.h>
 
 #include <CLI/CLI.hpp>
+#include <cstring>
+#include <memory>
 #include <algorithm>
 #include <chrono>
 #include <thread>
@@ -17,14 +23,18 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <reentry/guidance_cmd_t.hpp>
+#include <reentry/guidance_status_t.hpp>
 #include <reentry/nav_state_t.hpp>
+#include <reentry/plan_t.hpp>
 #include <reentry/run_control_t.hpp>
 #include <reentry/truth_telemetry_t.hpp>
 #include <string>
 #include <vector>
 
+#include "transport/event_log.hpp"
 #include "transport/lcm_codec.hpp"
 #include "transport/monotonic_clock.hpp"
+#include "transport/udpm.hpp"
 #include "dynamics/simulator.hpp"
 #include "evaluation/mission_verdict.hpp"
 #include "reentry/config/mission.hpp"
@@ -39,20 +49,59 @@ using reentry::transport::sleep_until_ns;
 constexpr int kExitOk = 0;
 constexpr int kExitUsage = 2;
 constexpr int kExitLinkLoss = 3;
+constexpr int kExitTransport = 7;
+
+// Plausibility windows of a command: finite, attitude angles physically meaningful. (Guidance
+// limits are judged by the verdict, not enforced here: the referee must see what was flown.)
+constexpr double kAlphaLimit_rad = M_PI / 2.0;
+constexpr double kBetaLimit_rad = M_PI / 2.0;
+constexpr double kSigmaLimit_rad = 2.0 * M_PI;
 
 struct CmdState {
   reentry::guidance_cmd_t msg{};
   reentry::guidance_cmd_t latest{};
   bool have_latest = false;
-  std::int32_t bad = 0;
+  std::int64_t sim_tick = 0;        // the tick the simulator has published last
+  std::int32_t bad = 0;             // undecodable messages on the guidance channels
+  std::int32_t bad_commands = 0;    // decodable commands outside the windows (NaN/inf, tick, range)
+  std::int64_t last_heard_ns = -1;  // last usable message from the guidance process
+  reentry::guidance_status_t status{};
+  reentry::plan_t plan{};
 };
 
-void on_cmd(const lcm::ReceiveBuffer* rbuf, const std::string&, CmdState* st) {
-  if (!decode_into(st->msg, rbuf->data, static_cast<int>(rbuf->data_size), st->bad)) return;
-  if (!st->have_latest || st->msg.tick >= st->latest.tick) {
-    st->latest = st->msg;
-    st->have_latest = true;
+bool command_plausible(const reentry::guidance_cmd_t& c, const CmdState& st) {
+  if (!std::isfinite(c.alpha_rad) || !std::isfinite(c.beta_rad) || !std::isfinite(c.sigma_rad)) return false;
+  if (std::fabs(c.alpha_rad) > kAlphaLimit_rad || std::fabs(c.beta_rad) > kBetaLimit_rad ||
+      std::fabs(c.sigma_rad) > kSigmaLimit_rad) {
+    return false;
   }
+  // It must answer a published tick (not the future) and not go back behind the latest one.
+  if (c.tick < 0 || c.tick > st.sim_tick) return false;
+  return !st.have_latest || c.tick >= st.latest.tick;
+}
+
+void on_datagram(const reentry::transport::Datagram& d, CmdState& st, reentry::transport::EventLogWriter& log) {
+  const bool cmd = std::strcmp(d.channel, "GUIDANCE_CMD") == 0;
+  const bool status = std::strcmp(d.channel, "GUIDANCE_STATUS") == 0;
+  const bool plan = std::strcmp(d.channel, "PLAN") == 0;
+  if (!cmd && !status && !plan) return;  // our own output looped back, or not ours
+  log.record(d.channel, d.payload, d.payload_len);
+  if (status) {
+    if (decode_into(st.status, d.payload, d.payload_len, st.bad)) st.last_heard_ns = mono_ns();
+    return;
+  }
+  if (plan) {
+    if (decode_into(st.plan, d.payload, d.payload_len, st.bad)) st.last_heard_ns = mono_ns();
+    return;
+  }
+  if (!decode_into(st.msg, d.payload, d.payload_len, st.bad)) return;
+  if (!command_plausible(st.msg, st)) {
+    ++st.bad_commands;
+    return;
+  }
+  st.last_heard_ns = mono_ns();
+  st.latest = st.msg;
+  st.have_latest = true;
 }
 
 std::int8_t event_code(reentry::truth::SimEvent e) {
@@ -71,13 +120,10 @@ std::int8_t event_code(reentry::truth::SimEvent e) {
 
 int main(int argc, char** argv) {
   CLI::App cli{"Truth simulator LCM process (SIL)"};
-  std::string mission_arg, mode = "lockstep", summary_path;
-  // Lockstep runs as fast as the two processes can ping-pong; on two cores the logger then
-  // loses the CPU and drops datagrams, and a log with holes cannot be replayed bit for bit.
-  int lockstep_pace_us = 200;
-  // Truth telemetry every N ticks (default 1 Hz at 10 Hz GNC): enough for the plots, and every
-  // message less per tick is one the logger does not have to keep up with.
+  std::string mission_arg, mode = "lockstep", summary_path, log_path;
+  // Truth telemetry every N ticks (default 1 Hz at 10 Hz GNC): enough for the plots.
   int truth_every = 10;
+  int link_timeout_ticks = 3;
   std::uint64_t seed = 0;
   int transport_delay = -1;
   double cmd_timeout_s = 10.0;
@@ -87,10 +133,12 @@ int main(int argc, char** argv) {
   cli.add_option("--seed", seed, "dispersion seed (0: nominal)");
   cli.add_option("--mode", mode, "lockstep or realtime")->check(CLI::IsMember({"lockstep", "realtime"}));
   cli.add_option("--transport-delay-ticks", transport_delay, "command transport delay (default: mission)");
-  cli.add_option("--cmd-timeout", cmd_timeout_s, "lockstep: seconds to wait for a command");
+  cli.add_option("--cmd-timeout", cmd_timeout_s, "seconds to wait for the first message of the guidance process");
+  cli.add_option("--link-timeout-ticks", link_timeout_ticks,
+                 "GNC periods without a message from the guidance process that are a link loss")
+      ->check(CLI::Range(1, 1000));
+  cli.add_option("--log", log_path, "record every message sent and received in this LCM log");
   cli.add_option("--truth-every", truth_every, "publish TRUTH every N ticks (and at the end)")->check(CLI::PositiveNumber);
-  cli.add_option("--lockstep-pace-us", lockstep_pace_us,
-                 "lockstep: pause after each command so lcm-logger keeps up on a loaded machine");
   cli.add_option("--summary-json", summary_path, "write the end-of-run summary here");
   cli.add_option("--progress-period", progress_period_s, "simulated seconds between progress lines");
   cli.add_option("--stop-after", stop_after_s, "end the run (time-out event) after this simulated time");
@@ -115,13 +163,39 @@ int main(int argc, char** argv) {
   const double dt = 1.0 / mission.guidance.gnc_rate_hz;
   const bool lockstep = mode == "lockstep";
 
-  lcm::LCM lcm;
-  if (!lcm.good()) {
-    std::fprintf(stderr, "reentry_sim_lcm: LCM initialisation failed\n");
-    return kExitUsage;
+  reentry::transport::UdpmUrl url;
+  std::string net_err;
+  auto net = std::make_unique<reentry::transport::UdpmSocket>();
+  if (!reentry::transport::parse_udpm_url(reentry::transport::default_udpm_url(), url, net_err) ||
+      !net->open(url, net_err)) {
+    std::fprintf(stderr, "reentry_sim_lcm: network: %s\n", net_err.c_str());
+    return kExitTransport;
+  }
+  reentry::transport::EventLogWriter log;
+  if (!log_path.empty() &&
+      !log.open(log_path, 16u << 20,
+                lockstep ? reentry::transport::EventLogWriter::WhenFull::kWait
+                         : reentry::transport::EventLogWriter::WhenFull::kDrop,
+                net_err)) {
+    std::fprintf(stderr, "reentry_sim_lcm: %s\n", net_err.c_str());
+    return kExitTransport;
   }
   CmdState cmds;
-  lcm.subscribeFunction("GUIDANCE_CMD", &on_cmd, &cmds);
+  auto publish = [&](const char* channel, const std::uint8_t* data, int len) {
+    net->publish(channel, data, len);
+    log.record(channel, data, len);
+  };
+  reentry::transport::Datagram dgram;
+  auto drain = [&](std::int64_t timeout_ns) {  // handles at most one datagram after waiting
+    const int r = net->receive(dgram, timeout_ns);
+    if (r == 1) on_datagram(dgram, cmds, log);
+    return r;
+  };
+  const std::int64_t link_ns = static_cast<std::int64_t>(link_timeout_ticks) *
+                               static_cast<std::int64_t>(std::llround(dt * 1e9));
+  const std::int64_t startup_ns = static_cast<std::int64_t>(cmd_timeout_s * 1e9);
+  double link_silent_s = 0.0;
+  std::int64_t link_lost_tick = -1;
 
   std::vector<std::uint8_t> buf(65000);
   reentry::nav_state_t nav{};
@@ -175,7 +249,7 @@ int main(int argc, char** argv) {
     tel.heading_to_taem_rad = ts.heading_to_taem_rad;
     int n = encode_into(tel, buf.data(), static_cast<int>(buf.size()));
     const bool last_tick = sim->finished();
-    if (n > 0 && (k % truth_every == 0 || last_tick)) lcm.publish("TRUTH", buf.data(), static_cast<unsigned>(n));
+    if (n > 0 && (k % truth_every == 0 || last_tick)) publish("TRUTH", buf.data(), n);
     if (ts.t_s >= next_progress_s) {
       std::printf("progress t_s=%.1f alt_km=%.2f mach=%.2f dtg_km=%.1f\n", ts.t_s, ts.h_m * 1e-3, ts.mach,
                   ts.range_to_taem_m * 1e-3);
@@ -184,33 +258,57 @@ int main(int argc, char** argv) {
     }
     if (event != reentry::truth::SimEvent::kNone) break;
     n = encode_into(nav, buf.data(), static_cast<int>(buf.size()));
-    if (n > 0) lcm.publish("NAV_STATE", buf.data(), static_cast<unsigned>(n));
+    cmds.sim_tick = k;
+    if (n > 0) publish("NAV_STATE", buf.data(), n);
+    const std::int64_t nav_sent_ns = mono_ns();
 
     // Collect the command answering tick k.
+    bool lost = false;
     if (lockstep) {
-      const std::int64_t deadline = mono_ns() + static_cast<std::int64_t>(cmd_timeout_s * 1e9);
-      std::int64_t republish_ns = mono_ns() + 200000000LL;
+      std::int64_t republish_ns = nav_sent_ns + period_ns;
       while (!(cmds.have_latest && cmds.latest.tick >= k)) {
-        const std::int64_t left_ms = (deadline - mono_ns()) / 1000000;
-        if (left_ms <= 0) break;
-        lcm.handleTimeout(static_cast<int>(left_ms > 100 ? 100 : left_ms));
-        if (mono_ns() > republish_ns) {  // a late subscriber may have missed it: repeat
-          lcm.publish("NAV_STATE", buf.data(), static_cast<unsigned>(n));
-          republish_ns += 200000000LL;
+        const std::int64_t now = mono_ns();
+        // Silence is counted from our sample or the guidance's last word (its status heartbeats
+        // while a plan is late), whichever is later; before its first word, the start-up time.
+        const bool heard = cmds.last_heard_ns >= 0;
+        const std::int64_t since = heard ? std::max(cmds.last_heard_ns, nav_sent_ns) : start_ns;
+        if (now - since > (heard ? link_ns : startup_ns)) {
+          lost = true;
+          link_silent_s = static_cast<double>(now - since) * 1e-9;
+          break;
         }
-      }
-      if (lockstep_pace_us > 0) std::this_thread::sleep_for(std::chrono::microseconds(lockstep_pace_us));
-      if (!(cmds.have_latest && cmds.latest.tick >= k)) {
-        std::fprintf(stderr, "reentry_sim_lcm: no command for tick %lld within %.1f s\n",
-                     static_cast<long long>(k), cmd_timeout_s);
-        exit_code = kExitLinkLoss;
-        event = reentry::truth::SimEvent::kFailure;
-        break;
+        if (drain(std::min<std::int64_t>(republish_ns - now, 20000000)) < 0) {
+          std::fprintf(stderr, "reentry_sim_lcm: receive failed\n");
+          lost = true;
+          break;
+        }
+        if (mono_ns() >= republish_ns) {  // a late subscriber or a lost datagram: repeat
+          if (n > 0) publish("NAV_STATE", buf.data(), n);
+          republish_ns += period_ns;
+        }
       }
     } else {
       sleep_until_ns(start_ns + (k + 1) * period_ns);
-      while (lcm.handleTimeout(0) > 0) {
+      while (drain(0) == 1) {
       }
+      const std::int64_t now = mono_ns();
+      const bool heard = cmds.last_heard_ns >= 0;
+      const std::int64_t since = heard ? cmds.last_heard_ns : start_ns;
+      if (now - since > (heard ? link_ns : startup_ns)) {
+        lost = true;
+        link_silent_s = static_cast<double>(now - since) * 1e-9;
+      }
+    }
+    if (lost) {
+      link_lost_tick = k;
+      std::fprintf(stderr,
+                   "reentry_sim_lcm: link loss: no message from the guidance process for %.3f s (%d ticks of "
+                   "%.3f s) at tick %lld; last command held, run ended; exit %d (link_loss)\n",
+                   link_silent_s, cmds.last_heard_ns >= 0 ? link_timeout_ticks : 0, dt, static_cast<long long>(k),
+                   kExitLinkLoss);
+      exit_code = kExitLinkLoss;
+      event = reentry::truth::SimEvent::kFailure;
+      break;
     }
     const std::size_t slot = static_cast<std::size_t>(k % (delay + 1));
     cmd_fifo[slot] = cmds.latest;
@@ -237,7 +335,7 @@ int main(int argc, char** argv) {
   rc.utime = std::llround(f.t_s * 1e6);
   rc.tick = k;
   rc.command = reentry::run_control_t::END_OF_RUN;
-  rc.event = exit_code == kExitOk ? event_code(summary.event) : reentry::run_control_t::EVENT_ABORT;
+  rc.event = exit_code == kExitOk ? event_code(summary.event) : reentry::run_control_t::EVENT_LINK_LOSS;
   rc.final_altitude_m = f.h_m;
   rc.final_velocity_mps = f.V_mps;
   rc.final_mach = f.mach;
@@ -254,7 +352,8 @@ int main(int argc, char** argv) {
   rc.max_q_alpha_Pa_rad = summary.maxima.q_alpha_Pa_rad;
   rc.flight_time_s = f.t_s;
   const int n = encode_into(rc, buf.data(), static_cast<int>(buf.size()));
-  for (int i = 0; i < 3 && n > 0; ++i) lcm.publish("RUN_CONTROL", buf.data(), static_cast<unsigned>(n));
+  for (int i = 0; i < 3 && n > 0; ++i) publish("RUN_CONTROL", buf.data(), n);
+  log.close();
 
   if (!summary_path.empty()) {
     nlohmann::json j;
@@ -281,6 +380,16 @@ int main(int argc, char** argv) {
     j["flight_time_s"] = f.t_s;
     j["ticks"] = k;
     j["bad_messages"] = cmds.bad;
+    j["bad_commands"] = cmds.bad_commands;
+    j["bad_datagrams"] = net->counters().bad_datagrams;
+    j["rx_kernel_drops"] = net->counters().kernel_drops;
+    j["log_recorded"] = log.recorded();
+    j["log_dropped"] = log.dropped();
+    j["link_timeout_ticks"] = link_timeout_ticks;
+    if (exit_code == kExitLinkLoss) {
+      j["link_loss"] = {{"tick", link_lost_tick}, {"silent_ms", link_silent_s * 1e3},
+                        {"guidance_ever_heard", cmds.last_heard_ns >= 0}};
+    }
     // Context for the plots (tools/plot): aim point, heading-alignment circle, limits.
     j["taem_lat_deg"] = mission.taem.latitude_rad * 180.0 / M_PI;
     j["taem_lon_deg"] = mission.taem.longitude_rad * 180.0 / M_PI;

@@ -33,10 +33,17 @@ struct DispersionDraw {
 /// Uniform variate in [0, 1) from the top 53 bits of one mt19937_64 output.
 double uniform_01(std::uint64_t raw);
 
-/// Draw every dispersed quantity from `half_widths` with std::mt19937_64(seed), in a fixed
-/// order (the order of the DispersionDraw fields). Symmetric quantities are uniform in
-/// [-w, +w]; the wind scale is uniform in [wind_scale_min, wind_scale_max]; the density
-/// perturbation amplitude is the configured value, its realisation is fixed by density_seed.
-DispersionDraw draw_dispersions(const config::Dispersions& half_widths, std::uint64_t seed);
+/// Standard normal truncated at +-3 sigma at the quantile u in [0, 1) of the truncated
+/// distribution (inverse CDF, Boost.Math erf_inv): u = 0.5 gives 0, u -> 0 / 1 gives -3 / +3.
+double truncated_standard_normal(double u);
+
+/// Draw every dispersed quantity of `set` with std::mt19937_64(seed), one engine output per
+/// quantity in a fixed order (the order of the DispersionDraw fields). A uniform quantity with
+/// half-width w is uniform in [-w, +w]; a Gaussian one with 3 sigma w is N(0, (w/3)^2)
+/// truncated at +-w, by the inverse CDF of the same output (same seed, same quantile). The wind
+/// scale is uniform in [wind_scale_min, wind_scale_max] or Gaussian about its centre with 3 sigma
+/// at its ends; the density perturbation amplitude is the configured value, its realisation is
+/// fixed by density_seed.
+DispersionDraw draw_dispersions(const config::Dispersions& set, std::uint64_t seed);
 
 }  // namespace reentry::truth

@@ -43,6 +43,7 @@ class PointModel {
   std::optional<Wind> wind;  // empty: no wind
   std::optional<Aerodynamics> aero;
   double mass_kg = 0.0, area_m2 = 0.0, nose_radius_m = 0.0;
+  config::HeatingModel heating = config::HeatingModel::kChapmanStagnation;  // vehicle.heating_model
   double cl_scale = 1.0, cd_scale = 1.0;
   bool trim = false;
 
@@ -138,7 +139,7 @@ PointOutputs<T> PointModel::evaluate(const T& t, const scalar::Vec3<T>& r_I, con
   }
   const Vec3 g_I = C_IR * Vec3(gravity->acceleration_R(r_R));  // (2.28)
   d.accel_I = g_I + d.aero_I;                                  // (2.25)
-  d.qdot = chapman_heat_flux_Wpm2(d.rho, d.airspeed, nose_radius_m);  // (3.5)
+  d.qdot = heat_flux_Wpm2(heating, d.rho, d.airspeed, d.alpha, nose_radius_m);  // (3.5) or Betts
 
   if (full) {
     const Vec3 v_V = C_VR * (C_RI * v_rel_I);  // north, east, down

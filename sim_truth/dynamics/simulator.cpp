@@ -199,6 +199,7 @@ std::unique_ptr<Simulator> Simulator::create(const config::Mission& mission, con
   m.mass_kg = mission.vehicle.mass_kg * disp.mass_scale;
   m.area_m2 = mission.vehicle.reference_area_m2;
   m.nose_radius_m = mission.vehicle.nose_radius_m;
+  m.heating = mission.vehicle.heating_model;
   st.mass_kg = m.mass_kg;
   if (!(m.mass_kg > 0.0) || !(m.area_m2 > 0.0) || !(m.nose_radius_m > 0.0))
     return fail("vehicle mass, reference area and nose radius must be positive");

@@ -4,10 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <cstdlib>
 #include <memory>
 #include <vector>
 
+#include "app/guidance_node.hpp"
+#include "guidance/mission_adapter.hpp"
 #include "guidance/guidance_stack.hpp"
 #include "malloc_counter.hpp"
 #include "planner/entry_planner.hpp"
@@ -79,7 +83,7 @@ TEST(Allocation, CompletePlansForTwoMissionsAllocateNothing) {
     const config::Mission m = load(name);
     auto planner = std::make_unique<EntryPlanner>();
     auto profile = std::make_unique<ReferenceProfile>();
-    ASSERT_EQ(planner->init(m), Status::kOk) << name;
+    ASSERT_EQ(init_from_mission(*planner, m), Status::kOk) << name;
     const RelativeState entry = planner->entry_state();
     Status st;
     std::int64_t allocations;
@@ -145,6 +149,57 @@ TEST(Allocation, ExecutiveCyclesWithPlanAdoptionAllocateNothing) {
   EXPECT_GE(stack.executive->counters().planner_runs, 2);  // entry plan and replans were computed
   EXPECT_GE(stack.executive->counters().plans_adopted, 1)
       << "last plan status: " << to_string(stack.executive->counters().last_plan_status);
+}
+
+// The guidance process's per-message path (fsw/app): decode the datagram, record it in the
+// process's own log, run the cycle, encode and record command, status and plan. The nav
+// conversion is injected, here a look-up of the profile state for the message's tick.
+struct ProfileNav {
+  const ReferenceProfile* profile;
+  double lat, lon;
+};
+
+Status profile_nav(const nav_state_t& nav, RelativeState& out, void* ctx) {
+  const auto* p = static_cast<const ProfileNav*>(ctx);
+  const int n = p->profile->n_points;
+  out = state_on(*p->profile, 1 + static_cast<int>(nav.tick * (n - 2) / 1000), nav.t_s, 1.0, p->lat, p->lon);
+  return Status::kOk;
+}
+
+TEST(Allocation, GuidanceProcessMessagePathAllocatesNothing) {
+  SKIP_WITHOUT_COUNTER();
+  const config::Mission m = load("x33");
+  GuidanceStack stack;
+  ASSERT_EQ(stack.create(m, exec::PlanMode::kSynchronous), "");
+  auto profile = std::make_unique<ReferenceProfile>();
+  ASSERT_EQ(stack.planner->planner.plan(stack.planner->planner.entry_state(), *profile), Status::kOk);
+  ProfileNav ctx{profile.get(), m.entry.latitude_rad, m.entry.longitude_rad};
+  auto node = std::make_unique<app::GuidanceNode>(*stack.executive, &profile_nav, &ctx, m.guidance.gnc_rate_hz);
+  node->attach(nullptr, app::RunMode::kLockstep);
+  const std::string log = ::testing::TempDir() + "/allocation_node.lcm";
+  std::string err;
+  ASSERT_TRUE(node->open_log(log, app::RunMode::kLockstep, err)) << err;
+  std::vector<std::vector<std::uint8_t>> msgs;
+  for (int i = 0; i < 1000; ++i) {
+    nav_state_t nav{};
+    nav.tick = i;
+    nav.t_s = 0.1 * i;
+    nav.utime = 100000LL * i;
+    std::vector<std::uint8_t> b(static_cast<std::size_t>(nav.getEncodedSize()));
+    nav.encode(b.data(), 0, static_cast<int>(b.size()));
+    msgs.push_back(std::move(b));
+  }
+  std::int64_t allocations;
+  {
+    MallocCounter counter;
+    for (const auto& b : msgs) node->on_datagram("NAV_STATE", b.data(), static_cast<int>(b.size()));
+    allocations = counter.count();
+  }
+  node->close_log();
+  std::remove(log.c_str());
+  EXPECT_EQ(allocations, 0);
+  EXPECT_EQ(node->commands_published(), 1000);
+  EXPECT_GE(stack.executive->counters().plans_adopted, 1);
 }
 
 }  // namespace

@@ -11,8 +11,14 @@
 #include <string>
 
 #include "reentry/config/mission.hpp"
+#include "temp_mission.hpp"
 
 namespace {
+
+using reentry_test::kConfigDir;
+using reentry_test::replace_once;
+using reentry_test::slurp;
+using reentry_test::TempMission;
 
 using reentry::config::load_mission;
 using reentry::config::LoadResult;
@@ -23,53 +29,6 @@ constexpr double kDeg = kPi / 180.0;
 constexpr double kFt = 0.3048;
 constexpr double kBtuPerFt2s = 1055.05585262 / (kFt * kFt);
 constexpr double kPsf = 4.4482216152605 / (kFt * kFt);
-const std::string kConfigDir = REENTRY_TEST_CONFIG_DIR;
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void replace_once(std::string& text, const std::string& from, const std::string& to) {
-  const size_t pos = text.find(from);
-  ASSERT_NE(pos, std::string::npos) << "fixture text not found: " << from;
-  text.replace(pos, from.size(), to);
-}
-
-class TempMission {
- public:
-  TempMission() {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("reentry_config_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-    mission_ = slurp(kConfigDir + "/missions/x33.toml");
-    vehicle_ = slurp(kConfigDir + "/vehicles/x33.toml");
-  }
-  ~TempMission() {
-    std::error_code ec;
-    std::filesystem::remove_all(dir_, ec);
-  }
-  std::string& mission() { return mission_; }
-  std::string& vehicle() { return vehicle_; }
-  std::string mission_path() const { return (dir_ / "mission.toml").string(); }
-  std::string vehicle_path() const { return (dir_ / "vehicle.toml").string(); }
-  LoadResult load() {
-    std::string m = mission_;
-    replace_once(m, "\"../vehicles/x33.toml\"", "\"vehicle.toml\"");
-    size_t pos;
-    while ((pos = m.find("\"../environment/")) != std::string::npos) m.replace(pos, 16, "\"" + kConfigDir + "/environment/");
-    std::ofstream(mission_path()) << m;
-    std::ofstream(vehicle_path()) << vehicle_;
-    return load_mission(mission_path());
-  }
-
- private:
-  std::filesystem::path dir_;
-  std::string mission_, vehicle_;
-};
 
 TEST(ConfigLoad, AllFourMissionsLoad) {
   for (const char* name : {"horus", "x33", "orbiter", "x38"}) {
@@ -145,6 +104,9 @@ TEST(ConfigLoad, HorusAndOrbiterMatchTables) {
   EXPECT_NEAR(o.mission.constraints.dynamic_pressure_max_Pa, 342.0 * kPsf, 1e-3);
   EXPECT_DOUBLE_EQ(o.mission.vehicle.mass_kg, 104330.0);
   EXPECT_EQ(o.mission.constraints.q_alpha_max_Pa_rad, reentry::config::kNotConstrained);
+  // The 70 BTU/(ft^2 s) limit is Betts's wing-leading-edge one (README, vehicle file).
+  EXPECT_EQ(o.mission.vehicle.heating_model, reentry::config::HeatingModel::kBettsLeadingEdge);
+  EXPECT_EQ(h.mission.vehicle.heating_model, reentry::config::HeatingModel::kChapmanStagnation);  // default
 }
 
 // Orbiter table entries equal the public data file (parsed here with a separate reader).
@@ -195,6 +157,17 @@ struct BadCase {
   const char* value;  // expected in the message
 };
 
+// 70 increasing values (more than the 64 the on-board tables hold).
+std::string seventy(double first, double step, const char* key, bool open_array) {
+  std::string s = std::string(key) + " = [";
+  for (int i = 0; i < 70; ++i) s += std::to_string(first + step * i) + (i + 1 < 70 || open_array ? ", " : "]");
+  return s;
+}
+const std::string kSeventyEnergiesText = seventy(0.0, 1.0 / 69.0, "energy", false);
+const std::string kSeventyAlphasText = seventy(-70.0, 1.0, "alpha_deg", true);  // + the file's 55 = 125
+const char* const kSeventyEnergies = kSeventyEnergiesText.c_str();
+const char* const kSeventyAlphas = kSeventyAlphasText.c_str();
+
 class BadInput : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadInput, IsRejectedNamingFileKeyAndValue) {
@@ -228,15 +201,60 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"alpha_planned_with_table", false, "[alpha_profile]\n", "[alpha_profile]\nsource = \"planned\"\n",
                 "alpha_profile.energy", "not allowed"},
         BadCase{"parse_error", false, "[guidance]", "[guidance", "parse error", "line"},
+        BadCase{"distribution_enum", false, "\ndistribution = \"gaussian\"", "\ndistribution = \"normal\"",
+                "dispersions.distribution", "\"normal\""},
+        BadCase{"distribution_override_enum", false, "entry_heading_deg = 0.5\n",
+                "entry_heading_deg = 0.5\nentry_heading_distribution = \"lognormal\"\n",
+                "dispersions.entry_heading_distribution", "\"lognormal\""},
+        BadCase{"stress_distribution_enum", false, "\ndistribution = \"uniform\"", "\ndistribution = \"flat\"",
+                "stress_dispersions.distribution", "\"flat\""},
+        BadCase{"negative_three_sigma", false, "cl_scale = 0.10", "cl_scale = -0.10", "dispersions.cl_scale", "-0.1"},
         BadCase{"wind_order", false, "wind_scale_min = 0.0", "wind_scale_min = 2.0", "dispersions.wind_scale_max", "1.5"},
         BadCase{"negative_mass", true, "mass_kg = 37650.0", "mass_kg = -1.0", "vehicle.mass_kg", "-1"},
         BadCase{"zero_area", true, "reference_area_m2 = 149.4", "reference_area_m2 = 0.0", "vehicle.reference_area_m2", "0"},
+        BadCase{"heating_enum", true, "nose_radius_m = 0.8", "nose_radius_m = 0.8\nheating_model = \"fay_riddell\"",
+                "vehicle.heating_model", "\"fay_riddell\""},
         BadCase{"zero_nose", true, "nose_radius_m = 0.8", "nose_radius_m = 0", "vehicle.nose_radius_m", "0"},
         BadCase{"ragged_row", true, "cl = [\n  [0.000000, ", "cl = [\n  [", "aero.cl[0]", "5 values"},
         BadCase{"mach_order", true, "mach = [2.010000, 3.490000", "mach = [3.490000, 2.010000", "aero.mach[1]", "2.01"},
         BadCase{"policy_enum", true, "out_of_range = \"clamp\"", "out_of_range = \"wrap\"", "aero.out_of_range", "\"wrap\""},
-        BadCase{"negative_cd", true, "cd = [\n  [0.200841", "cd = [\n  [-0.200841", "aero.cd[0][0]", "-0.200841"}),
+        BadCase{"negative_cd", true, "cd = [\n  [0.200841", "cd = [\n  [-0.200841", "aero.cd[0][0]", "-0.200841"},
+        // Limits equal to the on-board capacities and rates guidance can run at (issue 29).
+        BadCase{"gnc_rate_tiny", false, "gnc_rate_hz = 10.0", "gnc_rate_hz = 1e-9", "guidance.gnc_rate_hz", "1e-09"},
+        BadCase{"gnc_rate_huge", false, "gnc_rate_hz = 10.0", "gnc_rate_hz = 5000.0", "guidance.gnc_rate_hz", "5000"},
+        BadCase{"latency_zero", false, "plan_latency_ticks = 5", "plan_latency_ticks = 0", "guidance.plan_latency_ticks", "0"},
+        BadCase{"alpha_profile_70_rows", false, "energy = [0.000, 0.120, 0.414, 1.000]", kSeventyEnergies,
+                "alpha_profile.energy", "has 70 values"},
+        BadCase{"aero_alpha_over_64_rows", true, "alpha_deg = [0.000000,", kSeventyAlphas, "aero.alpha_deg",
+                "has 125 values; the on-board aerodynamic table holds at most 64"}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return std::string(info.param.label); });
+
+TEST(ConfigLoad, DispersionSetsAreGaussianReferenceAndUniformStress) {
+  const LoadResult r = load_mission("x33");
+  ASSERT_TRUE(r.ok) << r.error;
+  const auto& ref = r.mission.dispersions;
+  ASSERT_TRUE(r.mission.has_stress_dispersions);
+  const auto& stress = r.mission.stress_dispersions;
+  using reentry::config::Distribution;
+  EXPECT_EQ(ref.entry_flight_path_rad.distribution, Distribution::kGaussian);
+  EXPECT_NEAR(ref.entry_flight_path_rad.value, 0.2 * kDeg, 1e-15);  // 3 sigma
+  EXPECT_EQ(ref.wind_scale_distribution, Distribution::kGaussian);
+  EXPECT_EQ(stress.entry_flight_path_rad.distribution, Distribution::kUniform);
+  EXPECT_NEAR(stress.entry_flight_path_rad.value, 0.2 * kDeg, 1e-15);  // half-width
+  EXPECT_EQ(stress.cd_scale.distribution, Distribution::kUniform);
+  EXPECT_EQ(stress.wind_scale_distribution, Distribution::kUniform);
+  EXPECT_DOUBLE_EQ(stress.wind_scale_max, 1.5);
+  // A quantity's own distribution overrides the section's.
+  TempMission t;
+  const std::string from = "entry_heading_deg = 0.5\n";
+  const size_t at = t.mission().find(from);
+  ASSERT_NE(at, std::string::npos);
+  t.mission().insert(at + from.size(), "entry_heading_distribution = \"uniform\"\n");
+  const LoadResult o = t.load();
+  ASSERT_TRUE(o.ok) << o.error;
+  EXPECT_EQ(o.mission.dispersions.entry_heading_rad.distribution, Distribution::kUniform);
+  EXPECT_EQ(o.mission.dispersions.entry_velocity_mps.distribution, Distribution::kGaussian);
+}
 
 TEST(ConfigLoad, PlannedAlphaProfileNeedsNoTable) {
   const LoadResult r = load_mission("x33_planned_alpha");

@@ -1,9 +1,11 @@
-// Executive cycle: lockstep adoption at k + L, overrun accounting with an injected slow
-// planner, synchronous == lockstep, invalid navigation handling, tick accounting.
+// Executive cycle: lockstep adoption at k + L, plan-wait and overrun accounting with an
+// injected slow planner, synchronous == lockstep, navigation plausibility windows (rejection
+// without latch-up, 64-bit tick extremes), tick accounting.
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cmath>
+#include <chrono>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -91,6 +93,16 @@ NavInput nav_at(std::int64_t tick, double dt) {
   return n;
 }
 
+// One lockstep cycle as the adapter runs it: step, then resume while the plan is late.
+CycleOutput step_lockstep(Executive& exec, const NavInput& nav) {
+  CycleOutput out = exec.step(nav);
+  for (long i = 0; out.awaiting_plan && i < 200000000L; ++i) {
+    std::this_thread::yield();
+    out = exec.resume();
+  }
+  return out;
+}
+
 ExecConfig base_config(PlanMode mode, int latency) {
   ExecConfig c;
   c.gnc_rate_hz = 10.0;
@@ -108,7 +120,7 @@ TEST(Executive, LockstepAdoptsPlanExactlyAtTickKPlusL) {
   auto exec = std::make_unique<Executive>();
   ASSERT_EQ(exec->init(base_config(PlanMode::kLockstep, 3), planner, law), Status::kOk);
   for (std::int64_t k = 0; k <= 6; ++k) {
-    const CycleOutput out = exec->step(nav_at(k, 0.1));
+    const CycleOutput out = step_lockstep(*exec, nav_at(k, 0.1));
     ASSERT_TRUE(out.emitted);
     EXPECT_EQ(out.plan_adopted, k == 3) << "tick " << k;
     EXPECT_EQ(out.plan_seq, k >= 3 ? 1 : 0) << "tick " << k;
@@ -134,28 +146,73 @@ TEST(Executive, PredictStateMatchesConstantDragKinematics) {
   EXPECT_NEAR(p.t_s, t, 1e-12);
 }
 
-TEST(Executive, SlowPlannerCountsOneOverrunAndStillAdoptsAtKPlusL) {
+TEST(Executive, LatePlanIsAWaitNotAnOverrunAndStillAdoptsAtKPlusL) {
   GatedPlanner planner;
   planner.gate_open = false;
   EchoLaw law;
   auto exec = std::make_unique<Executive>();
   ASSERT_EQ(exec->init(base_config(PlanMode::kLockstep, 2), planner, law), Status::kOk);
-  // The gate opens only once the executive has started waiting: the overrun is certain.
-  std::thread opener([&] {
-    while (exec->waits_started() < 1) std::this_thread::yield();
-    planner.gate_open = true;
-  });
   for (std::int64_t k = 0; k <= 4; ++k) {
-    const CycleOutput out = exec->step(nav_at(k, 0.1));
-    EXPECT_EQ(out.plan_adopted, k == 2) << "tick " << k;
+    CycleOutput out = exec->step(nav_at(k, 0.1));
     if (k == 2) {
-      EXPECT_NE(out.health_flags & kHealthPlanOverrun, 0);
+      // The plan requested at tick 0 is due and not ready: the cycle waits, nothing emitted.
+      ASSERT_TRUE(out.awaiting_plan);
+      EXPECT_FALSE(out.emitted);
+      EXPECT_TRUE(exec->awaiting_plan());
+      EXPECT_EQ(exec->awaiting_tick(), 2);
+      // While it waits, a repeat of the sample is a duplicate, another tick is rejected.
+      EXPECT_EQ(exec->step(nav_at(2, 0.1)).nav_verdict, NavVerdict::kDuplicate);
+      EXPECT_EQ(exec->step(nav_at(3, 0.1)).nav_verdict, NavVerdict::kRejectedTick);
+      for (int i = 0; i < 5; ++i) EXPECT_TRUE(exec->resume().awaiting_plan);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the wait (excluded from cycle time)
+      planner.gate_open = true;
+      for (long i = 0; out.awaiting_plan && i < 200000000L; ++i) {
+        std::this_thread::yield();
+        out = exec->resume();
+      }
+      EXPECT_TRUE(out.emitted);
+      EXPECT_FALSE(exec->awaiting_plan());
     }
+    EXPECT_EQ(out.plan_adopted, k == 2) << "tick " << k;
+    EXPECT_EQ(out.plan_seq, k >= 2 ? 1 : 0) << "tick " << k;
+    EXPECT_EQ(out.health_flags & kHealthPlanOverrun, 0) << "tick " << k;  // 20 ms < budget 200 ms
   }
-  opener.join();
+  const ExecCounters& c = exec->counters();
+  EXPECT_EQ(c.plan_waits, 1);
+  EXPECT_EQ(c.plan_overruns, 0);
+  EXPECT_EQ(c.plan_timeouts, 0);
+  EXPECT_EQ(c.plans_adopted, 1);
+  EXPECT_GE(c.plan_wait_ms_max, 20.0);
+  EXPECT_GE(c.plan_wait_ms_total, c.plan_wait_ms_max);
+  // The cycle's own time excludes the 20 ms wait (the doubles take microseconds).
+  EXPECT_LT(c.cycle_us_max, 10000.0);
+}
+
+// A plan whose computation takes longer than its budget L / f is an overrun in every mode.
+class SlowPlanner : public GatedPlanner {
+ public:
+  Status compute(const RelativeState& from, ReferenceProfile& out) override {
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    return GatedPlanner::compute(from, out);
+  }
+};
+
+TEST(Executive, PlanSlowerThanItsBudgetIsAnOverrunAndTheInlinePlanIsNotCycleTime) {
+  SlowPlanner planner;
+  EchoLaw law;
+  ExecConfig cfg = base_config(PlanMode::kSynchronous, 1);
+  cfg.gnc_rate_hz = 100.0;  // budget 1 tick = 10 ms < 30 ms
+  auto exec = std::make_unique<Executive>();
+  ASSERT_EQ(exec->init(cfg, planner, law), Status::kOk);
+  CycleOutput out;
+  for (std::int64_t k = 0; k <= 1; ++k) out = exec->step(nav_at(k, 0.01));
+  EXPECT_TRUE(out.plan_adopted);
+  EXPECT_NE(out.health_flags & kHealthPlanOverrun, 0);
   EXPECT_EQ(exec->counters().plan_overruns, 1);
-  EXPECT_EQ(exec->counters().plan_timeouts, 0);
-  EXPECT_EQ(exec->counters().plans_adopted, 1);
+  EXPECT_EQ(exec->counters().plan_waits, 0);
+  EXPECT_GE(exec->counters().planner_ms_max, 30.0);
+  // Tick 0 computed the plan inline (30 ms): the cycle time excludes it.
+  EXPECT_LT(exec->counters().cycle_us_max, 10000.0);
 }
 
 TEST(Executive, PlanWaitIsBoundedAndTimeoutIsFlagged) {
@@ -167,7 +224,8 @@ TEST(Executive, PlanWaitIsBoundedAndTimeoutIsFlagged) {
   auto exec = std::make_unique<Executive>();
   ASSERT_EQ(exec->init(cfg, planner, law), Status::kOk);
   exec->step(nav_at(0, 0.1));
-  const CycleOutput out = exec->step(nav_at(1, 0.1));
+  const CycleOutput out = step_lockstep(*exec, nav_at(1, 0.1));
+  EXPECT_TRUE(out.emitted);
   EXPECT_FALSE(out.plan_adopted);
   EXPECT_NE(out.health_flags & kHealthPlanTimeout, 0);
   EXPECT_EQ(exec->counters().plan_timeouts, 1);
@@ -181,7 +239,9 @@ std::vector<CycleOutput> fly(PlanMode mode, int n_ticks) {
   auto exec = std::make_unique<Executive>();
   std::vector<CycleOutput> outs;
   if (exec->init(base_config(mode, 4), planner, law) != Status::kOk) return outs;
-  for (std::int64_t k = 0; k < n_ticks; ++k) outs.push_back(exec->step(nav_at(k, 0.1)));
+  for (std::int64_t k = 0; k < n_ticks; ++k) {
+    outs.push_back(mode == PlanMode::kLockstep ? step_lockstep(*exec, nav_at(k, 0.1)) : exec->step(nav_at(k, 0.1)));
+  }
   return outs;
 }
 
@@ -231,17 +291,23 @@ TEST(Executive, TimeGoingBackwardsIsRejected) {
   auto exec = std::make_unique<Executive>();
   ASSERT_EQ(exec->init(base_config(PlanMode::kSynchronous, 1), planner, law), Status::kOk);
   exec->step(nav_at(0, 0.1));
-  const CycleOutput a = exec->step(nav_at(1, 0.1));
+  exec->step(nav_at(1, 0.1));
+  // A time that does not match its tick (t_s = tick / f) means the tick or the time is
+  // corrupted: rejected, and not answered (an answer would carry an untrusted tick).
   NavInput back = nav_at(2, 0.1);
   back.state.t_s = 0.05;  // earlier than tick 1
   const CycleOutput b = exec->step(back);
-  EXPECT_NE(b.health_flags & kHealthNavInvalid, 0);
-  EXPECT_EQ(b.sigma_rad, a.sigma_rad);
+  EXPECT_FALSE(b.emitted);
+  EXPECT_EQ(b.nav_verdict, NavVerdict::kRejectedTick);
   NavInput older_tick = nav_at(0, 0.1);
   older_tick.state.t_s = 0.3;
-  EXPECT_NE(exec->step(older_tick).health_flags & kHealthNavInvalid, 0);
-  EXPECT_EQ(exec->counters().invalid_nav, 2);
-  EXPECT_EQ(exec->step(nav_at(3, 0.1)).health_flags & kHealthNavInvalid, 0);
+  EXPECT_EQ(exec->step(older_tick).nav_verdict, NavVerdict::kRejectedTick);
+  EXPECT_EQ(exec->step(nav_at(0, 0.1)).nav_verdict, NavVerdict::kRejectedTick);  // consistent, but backwards
+  EXPECT_EQ(exec->counters().invalid_nav, 3);
+  EXPECT_EQ(exec->counters().nav_rejected_tick, 3);
+  const CycleOutput ok = exec->step(nav_at(2, 0.1));
+  EXPECT_TRUE(ok.emitted);
+  EXPECT_EQ(ok.health_flags & kHealthNavInvalid, 0);
 }
 
 TEST(Executive, DuplicateAndSkippedTicksAreCounted) {
@@ -259,6 +325,125 @@ TEST(Executive, DuplicateAndSkippedTicksAreCounted) {
   EXPECT_EQ(exec->counters().invalid_nav, 0);
 }
 
+// Nominal sample stream for the window tests: a steady descent at 7 km/s.
+TEST(Executive, OneImplausibleSampleIsRejectedAndTheStreamRecovers) {
+  // The wire_fuzz reproductions: one valid-looking message with a far tick, INT64_MAX, a time
+  // jump, a negative tick; then the real stream continues. Each is rejected without answer,
+  // the next real sample is accepted (no latch-up), and no signed arithmetic overflows
+  // (this test runs under UBSan in CI).
+  const std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+  const std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
+  struct Case {
+    const char* name;
+    std::int64_t tick;
+    double t_s;
+  };
+  const Case cases[] = {{"tick_jump", 150 + 1000000, 15.0},   {"tick_jump_consistent", 150 + 1000000, 100015.0},
+                        {"time_jump", 150, 1e9},              {"tick_max", kMax, 15.0},
+                        {"tick_max_consistent", kMax, 9.2e17}, {"tick_min", kMin, 15.0},
+                        {"tick_min_plus_1", kMin + 1, -9.2e17}, {"tick_negative", -(std::int64_t{1} << 62), 15.0},
+                        {"time_nan", 150, std::numeric_limits<double>::quiet_NaN()}};
+  for (const Case& c : cases) {
+    GatedPlanner planner;
+    EchoLaw law;
+    auto exec = std::make_unique<Executive>();
+    ASSERT_EQ(exec->init(base_config(PlanMode::kSynchronous, 1), planner, law), Status::kOk);
+    CycleOutput last;
+    for (std::int64_t k = 0; k < 150; ++k) last = exec->step(nav_at(k, 0.1));
+    NavInput bad = nav_at(150, 0.1);
+    bad.tick = c.tick;
+    bad.state.t_s = c.t_s;
+    const CycleOutput r = exec->step(bad);
+    EXPECT_FALSE(r.emitted) << c.name;
+    EXPECT_EQ(r.nav_verdict, NavVerdict::kRejectedTick) << c.name;
+    EXPECT_FALSE(exec->tick_in_window(c.tick) && c.tick != 150) << c.name;
+    int answered = 0, flagged = 0;
+    for (std::int64_t k = 150; k < 450; ++k) {
+      const CycleOutput o = exec->step(nav_at(k, 0.1));
+      answered += o.emitted ? 1 : 0;
+      flagged += (o.health_flags & kHealthNavInvalid) ? 1 : 0;
+    }
+    EXPECT_EQ(answered, 300) << c.name;
+    EXPECT_EQ(flagged, 0) << c.name;
+    EXPECT_EQ(exec->counters().invalid_nav, 1) << c.name;
+    EXPECT_EQ(exec->counters().skipped_ticks, 0) << c.name;
+  }
+  // INT64_MIN + 1 then INT64_MAX as the first two samples (wire_fuzz tick_overflow).
+  GatedPlanner planner;
+  EchoLaw law;
+  auto exec = std::make_unique<Executive>();
+  ASSERT_EQ(exec->init(base_config(PlanMode::kSynchronous, 1), planner, law), Status::kOk);
+  NavInput a = nav_at(0, 0.1), b = nav_at(1, 0.1);
+  a.tick = kMin + 1;
+  b.tick = kMax;
+  EXPECT_FALSE(exec->step(a).emitted);
+  EXPECT_FALSE(exec->step(b).emitted);
+  EXPECT_TRUE(exec->step(nav_at(0, 0.1)).emitted);
+  EXPECT_EQ(exec->counters().nav_rejected_tick, 2);
+}
+
+TEST(Executive, AbsurdButFiniteValuesAndJumpsAreRejectedHeldAndFlagged) {
+  // Absolute windows (radius 1 m, 1e6 m/s, drag 1e4 m/s^2) and rate windows (a 50 km altitude
+  // step or a 500 m/s speed step within one tick): answered with the held command, flagged,
+  // never adopted; the stream is accepted again at the next good sample.
+  struct Case {
+    const char* name;
+    void (*apply)(RelativeState&);
+  };
+  const Case cases[] = {
+      {"radius_1m", [](RelativeState& s) { s.radius_m = 1.0; s.altitude_m = 1.0 - 6378137.0; }},
+      {"velocity_1e6", [](RelativeState& s) { s.velocity_mps = 1e6; }},
+      {"drag_1e4", [](RelativeState& s) { s.drag_mps2 = 1e4; }},
+      {"lift_minus_1e4", [](RelativeState& s) { s.lift_mps2 = -1e4; }},
+      {"altitude_jump", [](RelativeState& s) { s.altitude_m += 5e4; }},
+      {"speed_jump", [](RelativeState& s) { s.velocity_mps -= 500.0; }},
+      {"negative_speed", [](RelativeState& s) { s.velocity_mps = -1.0; }},
+      {"nan_heading", [](RelativeState& s) { s.heading_rad = std::numeric_limits<double>::quiet_NaN(); }},
+  };
+  for (const Case& c : cases) {
+    GatedPlanner planner;
+    EchoLaw law;
+    auto exec = std::make_unique<Executive>();
+    ASSERT_EQ(exec->init(base_config(PlanMode::kSynchronous, 1), planner, law), Status::kOk);
+    CycleOutput last;
+    for (std::int64_t k = 0; k < 20; ++k) last = exec->step(nav_at(k, 0.1));
+    NavInput bad = nav_at(20, 0.1);
+    c.apply(bad.state);
+    const CycleOutput held = exec->step(bad);
+    EXPECT_TRUE(held.emitted) << c.name;
+    EXPECT_EQ(held.nav_verdict, NavVerdict::kRejectedValues) << c.name;
+    EXPECT_EQ(held.tick, 20) << c.name;
+    EXPECT_EQ(std::memcmp(&held.sigma_rad, &last.sigma_rad, sizeof(double)), 0) << c.name;
+    EXPECT_EQ(std::memcmp(&held.alpha_rad, &last.alpha_rad, sizeof(double)), 0) << c.name;
+    EXPECT_NE(held.health_flags & kHealthNavInvalid, 0) << c.name;
+    // The rejected sample did not consume its tick: the real sample 20 is used.
+    const CycleOutput real = exec->step(nav_at(20, 0.1));
+    EXPECT_EQ(real.nav_verdict, NavVerdict::kAccepted) << c.name;
+    EXPECT_EQ(real.health_flags & kHealthNavInvalid, 0) << c.name;
+    EXPECT_EQ(exec->counters().nav_rejected_values, 1) << c.name;
+    EXPECT_EQ(exec->counters().skipped_ticks, 0) << c.name;
+  }
+}
+
+TEST(Executive, RateWindowsWidenWithTheTicksSinceTheLastAcceptedSample) {
+  // 30 ticks lost: a 30 km altitude change over 3 s is plausible (10 km/s), one tick is not.
+  GatedPlanner planner;
+  EchoLaw law;
+  auto exec = std::make_unique<Executive>();
+  ASSERT_EQ(exec->init(base_config(PlanMode::kSynchronous, 1), planner, law), Status::kOk);
+  exec->step(nav_at(0, 0.1));
+  NavInput one = nav_at(1, 0.1);
+  one.state.altitude_m += 3e4;
+  EXPECT_EQ(exec->step(one).nav_verdict, NavVerdict::kRejectedValues);
+  NavInput later = nav_at(30, 0.1);
+  later.state.altitude_m += 3e4;
+  EXPECT_EQ(exec->step(later).nav_verdict, NavVerdict::kAccepted);
+  EXPECT_EQ(exec->counters().skipped_ticks, 28);  // ticks 2..29 (tick 1 was received)
+  // Beyond max_tick_gap nothing is accepted: the tick is implausible.
+  EXPECT_EQ(exec->step(nav_at(30 + 101, 0.1)).nav_verdict, NavVerdict::kRejectedTick);
+  EXPECT_EQ(exec->step(nav_at(30 + 100, 0.1)).nav_verdict, NavVerdict::kAccepted);
+}
+
 TEST(Executive, RejectsInvalidConfiguration) {
   GatedPlanner planner;
   EchoLaw law;
@@ -267,6 +452,12 @@ TEST(Executive, RejectsInvalidConfiguration) {
   EXPECT_EQ(exec->init(c, planner, law), Status::kInvalidInput);
   c = base_config(PlanMode::kSynchronous, 1);
   c.gnc_rate_hz = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(exec->init(c, planner, law), Status::kInvalidInput);
+  c = base_config(PlanMode::kSynchronous, 1);
+  c.nav.max_tick_gap = 0;
+  EXPECT_EQ(exec->init(c, planner, law), Status::kInvalidInput);
+  c = base_config(PlanMode::kSynchronous, 1);
+  c.nav.time_tolerance_ticks = 0.6;
   EXPECT_EQ(exec->init(c, planner, law), Status::kInvalidInput);
 }
 

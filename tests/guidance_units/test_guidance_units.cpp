@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "guidance/mission_adapter.hpp"
 #include "filter/rate_filter.hpp"
 #include "models/onboard_models.hpp"
 #include "nav/relative_state.hpp"
@@ -161,23 +162,23 @@ TEST(RateFilter, HoldsOnNaNAndRejectsBadLimits) {
 
 TEST(Tracker, ScheduledFrequencyFollows313) {
   const double w0 = 0.08, q_ref = 4000.0;
-  EXPECT_DOUBLE_EQ(EntryTracker::scheduled_omega(w0, 0.0, q_ref), 0.0);
-  EXPECT_DOUBLE_EQ(EntryTracker::scheduled_omega(w0, 1000.0, q_ref), w0 * (2.0 * 0.25 - 0.0625));
-  EXPECT_DOUBLE_EQ(EntryTracker::scheduled_omega(w0, 2000.0, q_ref), w0 * 0.75);
-  EXPECT_DOUBLE_EQ(EntryTracker::scheduled_omega(w0, 4000.0, q_ref), w0);
-  EXPECT_DOUBLE_EQ(EntryTracker::scheduled_omega(w0, 9000.0, q_ref), w0);  // held above q_ref
+  EXPECT_DOUBLE_EQ(scheduled_omega(w0, 0.0, q_ref), 0.0);
+  EXPECT_DOUBLE_EQ(scheduled_omega(w0, 1000.0, q_ref), w0 * (2.0 * 0.25 - 0.0625));
+  EXPECT_DOUBLE_EQ(scheduled_omega(w0, 2000.0, q_ref), w0 * 0.75);
+  EXPECT_DOUBLE_EQ(scheduled_omega(w0, 4000.0, q_ref), w0);
+  EXPECT_DOUBLE_EQ(scheduled_omega(w0, 9000.0, q_ref), w0);  // held above q_ref
 }
 
 TEST(Tracker, GainsFollowTheDocumentedRuleUnlessTheMissionOverrides) {
-  config::Mission m;
+  TrackerParams m;
   TrackerGains g = derive_gains(m);
   const double w0 = 2.0 * std::sqrt(9.80665 / 7050.0);
   EXPECT_NEAR(g.omega0_radps, w0, 1e-15);
   EXPECT_NEAR(g.omega0_radps, 0.0746, 1e-4);
   EXPECT_NEAR(g.zeta, 1.0 / std::sqrt(2.0), 1e-15);
   EXPECT_NEAR(g.k_integral, w0 * w0 * w0 / 20.0, 1e-18);
-  m.guidance.omega0_radps = 0.05;
-  m.guidance.zeta = 0.9;
+  m.omega0_radps = 0.05;
+  m.zeta = 0.9;
   g = derive_gains(m);
   EXPECT_DOUBLE_EQ(g.omega0_radps, 0.05);
   EXPECT_DOUBLE_EQ(g.zeta, 0.9);
@@ -188,11 +189,11 @@ TEST(Tracker, AdversarialInputsInTrackingNeverGiveANaNCommand) {
   const auto loaded = config::load_mission("x33");
   ASSERT_TRUE(loaded.ok) << loaded.error;
   EntryPlanner planner;  // static-size object; the test body is not flight code
-  ASSERT_EQ(planner.init(loaded.mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(planner, loaded.mission), Status::kOk);
   static ReferenceProfile profile;
   ASSERT_EQ(planner.plan(planner.entry_state(), profile), Status::kOk);
   EntryTracker t;
-  ASSERT_EQ(t.init(loaded.mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(t, loaded.mission), Status::kOk);
   t.set_profile(profile);
   const int k = profile.n_points / 2;
   RelativeState s;
@@ -233,9 +234,9 @@ TEST(Tracker, InitialDescentHoldsProfileAlphaWingsLevelAndNeverEmitsNaN) {
   const auto loaded = config::load_mission("x33");
   ASSERT_TRUE(loaded.ok) << loaded.error;
   EntryTracker t;
-  ASSERT_EQ(t.init(loaded.mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(t, loaded.mission), Status::kOk);
   AlphaProfile alpha;
-  ASSERT_EQ(alpha.init(loaded.mission.alpha_profile), Status::kOk);
+  ASSERT_EQ(init_from_mission(alpha, loaded.mission), Status::kOk);
   const double r = kEarthRadius_m + 110000.0, V = 7500.0;
   RelativeState s;
   s.radius_m = r;
@@ -439,10 +440,10 @@ std::unique_ptr<MidProfile> mid_profile_tracker(double profile_fraction) {
   m->mission = loaded.mission;
   EntryPlanner planner;
   static ReferenceProfile profile;
-  if (planner.init(m->mission) != Status::kOk || planner.plan(planner.entry_state(), profile) != Status::kOk) {
+  if (init_from_mission(planner, m->mission) != Status::kOk || planner.plan(planner.entry_state(), profile) != Status::kOk) {
     return nullptr;
   }
-  if (m->tracker.init(m->mission) != Status::kOk) return nullptr;
+  if (init_from_mission(m->tracker, m->mission) != Status::kOk) return nullptr;
   m->tracker.set_profile(profile);
   m->profile = &profile;
   m->state = level_state_on_profile(profile, static_cast<int>(profile_fraction * (profile.n_points - 1)));
@@ -496,12 +497,12 @@ TEST(Tracker, DragReferenceNeverExceedsTheSensedConstraintBound) {
   ASSERT_EQ(out.phase, Phase::kTracking);
   const double d_planned = out.drag_ref_mps2;
   OnboardModels models;
-  ASSERT_EQ(models.init(m->mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(models, m->mission), Status::kOk);
   const double cd = models.drag_coefficient(out.alpha_rad, m->state.energy_Jpkg, m->state.altitude_m);
   const double q_alpha = m->state.drag_mps2 / (cd * models.area_over_mass()) * out.alpha_rad;
   config::Mission tight = m->mission;
   tight.constraints.q_alpha_max_Pa_rad = 0.5 * q_alpha;
-  ASSERT_EQ(m->tracker.init(tight), Status::kOk);
+  ASSERT_EQ(init_from_mission(m->tracker, tight), Status::kOk);
   m->tracker.set_profile(*m->profile);
   ASSERT_EQ(m->tracker.step(m->state, 0.1, out), Status::kOk);
   ASSERT_EQ(out.phase, Phase::kTracking);
@@ -527,16 +528,16 @@ TEST(Tracker, TerminalRangeControlRisesToThePlannedBoundWhateverTheSensedDragRat
   unconstrained.constraints.load_factor_max_g = config::kNotConstrained;
   unconstrained.constraints.q_alpha_max_Pa_rad = config::kNotConstrained;
   unconstrained.constraints.dynamic_pressure_max_Pa = config::kNotConstrained;
-  ASSERT_EQ(m->tracker.init(unconstrained), Status::kOk);
+  ASSERT_EQ(init_from_mission(m->tracker, unconstrained), Status::kOk);
   m->tracker.set_profile(bounded);
   const int last = p.n_points - 1;
-  const double e_early = p.energy_Jpkg[last] + 0.9 * kTerminalSpanFraction * (p.energy_Jpkg[0] - p.energy_Jpkg[last]);
+  const double e_early = p.energy_Jpkg[last] + 0.9 * GuidanceLawParams{}.terminal_span_fraction * (p.energy_Jpkg[0] - p.energy_Jpkg[last]);
   int k = last;
   while (k > 0 && p.energy_Jpkg[k - 1] <= e_early) --k;
   RelativeState s = level_state_on_profile(p, k);
   s.heading_rad = place_from_aim_point(m->mission.taem, 0.5 * profile_range_to_go_m(p, k), 0.0, s);
   OnboardModels models;
-  ASSERT_EQ(models.init(m->mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(models, m->mission), Status::kOk);
   constexpr double kDragRatio = 0.8;
   TrackerOutput out;
   ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
@@ -568,7 +569,7 @@ double heat_limit_for_drag_bound(const OnboardModels& models, const RelativeStat
                                  double drag_bound_mps2) {
   const double cd = models.drag_coefficient(alpha_rad, s.energy_Jpkg, s.altitude_m);
   const double q = s.drag_mps2 / (cd * models.area_over_mass());
-  const double heat = models.heat_flux_Wpm2(2.0 * q / (s.velocity_mps * s.velocity_mps), s.velocity_mps);
+  const double heat = models.heat_flux_Wpm2(2.0 * q / (s.velocity_mps * s.velocity_mps), s.velocity_mps, alpha_rad);
   return heat * std::sqrt(drag_bound_mps2 / s.drag_mps2) / 0.97;
 }
 // Drag at the bottom of the pull-out from s, independently of the tracker's closed form:
@@ -605,7 +606,7 @@ TEST(Tracker, PullOutGuardStopsADiveThatWouldOvershootTheHeatLimit) {
   RelativeState s = sinking_below_reference(*m, k, -1.5 * M_PI / 180.0);
   const double lod = s.lift_mps2 / s.drag_mps2;
   OnboardModels models;
-  ASSERT_EQ(models.init(m->mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(models, m->mission), Status::kOk);
   config::Mission tight = m->mission;
   tight.constraints.heat_flux_max_Wpm2 =
       heat_limit_for_drag_bound(models, s, m->profile->alpha_rad[k], 1.3 * s.drag_mps2);
@@ -619,7 +620,7 @@ TEST(Tracker, PullOutGuardStopsADiveThatWouldOvershootTheHeatLimit) {
   capture.lift_mps2 = capture.drag_mps2 * lod;
   capture.flight_path_rad = -0.5 * M_PI / 180.0;
   TrackerOutput out;
-  ASSERT_EQ(m->tracker.init(tight), Status::kOk);
+  ASSERT_EQ(init_from_mission(m->tracker, tight), Status::kOk);
   m->tracker.set_profile(*m->profile);
   ASSERT_EQ(m->tracker.step(capture, 0.1, out), Status::kOk);
   ASSERT_EQ(out.phase, Phase::kTracking);
@@ -629,7 +630,7 @@ TEST(Tracker, PullOutGuardStopsADiveThatWouldOvershootTheHeatLimit) {
 
   RelativeState level = s;
   level.flight_path_rad = 0.0;
-  ASSERT_EQ(m->tracker.init(tight), Status::kOk);
+  ASSERT_EQ(init_from_mission(m->tracker, tight), Status::kOk);
   m->tracker.set_profile(*m->profile);
   ASSERT_EQ(m->tracker.step(capture, 0.1, out), Status::kOk);
   ASSERT_EQ(m->tracker.step(level, 0.1, out), Status::kOk);
@@ -651,7 +652,7 @@ TEST(Tracker, PullOutGuardRollsOutOfTheBankActuallyFlown) {
   const int k = static_cast<int>(kFraction * (m->profile->n_points - 1));
   const RelativeState s = sinking_below_reference(*m, k, -0.3 * M_PI / 180.0);
   OnboardModels models;
-  ASSERT_EQ(models.init(m->mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(models, m->mission), Status::kOk);
   // The lift-down roll modelled without the filter lag: the milder case.
   const double sigma_rate = m->mission.constraints.sigma_rate_max_radps;
   const double bottom_level = pullout_bottom_drag_mps2(models, s, 0.0, sigma_rate);
@@ -666,7 +667,7 @@ TEST(Tracker, PullOutGuardRollsOutOfTheBankActuallyFlown) {
   ASSERT_GT(bottom_level, 1.05 * s.drag_mps2);
   for (double flown_sigma : {0.0, M_PI}) {
     TrackerOutput out;
-    ASSERT_EQ(m->tracker.init(tight), Status::kOk);
+    ASSERT_EQ(init_from_mission(m->tracker, tight), Status::kOk);
     m->tracker.set_profile(*m->profile);
     RelativeState st = s;
     for (int cycle = 0; cycle < 4; ++cycle) {
@@ -691,7 +692,7 @@ TEST(Tracker, LoadReliefKeepsTheAlphaCommandWithinTheLoadLimit) {
   auto m = mid_profile_tracker(0.7);
   ASSERT_NE(m, nullptr);
   OnboardModels models;
-  ASSERT_EQ(models.init(m->mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(models, m->mission), Status::kOk);
   const double limit = 0.97 * m->mission.constraints.load_factor_max_g * 9.80665;
   RelativeState s = m->state;
   TrackerOutput out;
@@ -733,7 +734,7 @@ TEST(Tracker, DragLoopSeesTheDensityNotTheAlphaChannel) {
   auto b = mid_profile_tracker(0.7);
   ASSERT_NE(a, nullptr);
   ASSERT_NE(b, nullptr);
-  ASSERT_EQ(models.init(a->mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(models, a->mission), Status::kOk);
   RelativeState s = a->state;
   s.drag_mps2 *= 1.05;  // 5 % above the reference: a drag error to see
   s.lift_mps2 *= 1.05;
@@ -778,7 +779,7 @@ TEST(Tracker, ReversalModulationNeverRemovesLiftTheDragLoopAsksFor) {
   for (double flown_deg : {85.0, 20.0}) {
     auto m = mid_profile_tracker(0.9);
     ASSERT_NE(m, nullptr);
-    ASSERT_EQ(models.init(m->mission), Status::kOk);
+    ASSERT_EQ(init_from_mission(models, m->mission), Status::kOk);
     RelativeState s = m->state;
     s.drag_mps2 *= 1.3;  // below the reference: banked less than 90 deg
     s.lift_mps2 *= 1.3;
@@ -826,7 +827,7 @@ TEST(Tracker, ACorridorReversalEndingInTheFinalWindowGetsTheFullModulation) {
   const double rate = probe->mission.constraints.sigma_rate_max_radps;
   constexpr double kDeg = M_PI / 180.0;
   OnboardModels models;
-  ASSERT_EQ(models.init(probe->mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(models, probe->mission), Status::kOk);
   for (const double t_go_target : {150.0, 65.0}) {
     auto m = mid_profile_tracker(static_cast<double>(profile_index_at_time_to_go(p, t_go_target)) / last);
     ASSERT_NE(m, nullptr);
@@ -912,15 +913,17 @@ TEST(Tracker, TerminalDragLoopSettlesWithinTheTimeToGo) {
   // (zeta = 1/sqrt(2)) within the time to go, up to three times omega0 (bank-rate limit).
   const double omega0 = 2.0 * std::sqrt(kG0_mps2 / 7050.0);
   const double zeta = 1.0 / std::sqrt(2.0);
+  const TrackerParams p;
   for (double t_go : {2.0, 5.0, 10.0, 20.0, 60.0, 300.0}) {
-    const double w = terminal_omega_floor_radps(omega0, t_go);
+    const double w = terminal_omega_floor_radps(omega0, t_go, p.terminal_settling, p.terminal_omega_max_factor);
     EXPECT_LE(w, 3.0 * omega0 * (1.0 + 1e-12)) << t_go;
     if (w < 3.0 * omega0) {
       EXPECT_LE(1.0 / (zeta * w), t_go) << t_go;
     }
   }
-  EXPECT_LT(terminal_omega_floor_radps(omega0, 60.0), omega0);  // far from TAEM: the schedule rules
-  EXPECT_DOUBLE_EQ(terminal_omega_floor_radps(omega0, 0.0), 3.0 * omega0);
+  EXPECT_LT(terminal_omega_floor_radps(omega0, 60.0, p.terminal_settling, p.terminal_omega_max_factor), omega0);
+  EXPECT_DOUBLE_EQ(terminal_omega_floor_radps(omega0, 0.0, p.terminal_settling, p.terminal_omega_max_factor),
+                   3.0 * omega0);
 }
 
 TEST(Tracker, FinalDragTakesOnlyThePartOfTheDragRatioTheInnerTaemBandNeeds) {
@@ -936,7 +939,7 @@ TEST(Tracker, FinalDragTakesOnlyThePartOfTheDragRatioTheInnerTaemBandNeeds) {
     auto m = mid_profile_tracker(0.7);
     ASSERT_NE(m, nullptr);
     OnboardModels models;
-    ASSERT_EQ(models.init(m->mission), Status::kOk);
+    ASSERT_EQ(init_from_mission(models, m->mission), Status::kOk);
     TrackerOutput out;
     RelativeState s = m->state;
     ASSERT_EQ(m->tracker.step(s, 0.1, out), Status::kOk);
@@ -1183,7 +1186,7 @@ TEST(Tracker, LiftOverDragEstimateConvergesToTheSensedRatio) {
   TrackerOutput out;
   ASSERT_EQ(m->tracker.step(m->state, 0.1, out), Status::kOk);
   OnboardModels models;
-  ASSERT_EQ(models.init(m->mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(models, m->mission), Status::kOk);
   RelativeState s = m->state;
   for (int i = 0; i < 2000; ++i) {
     double cl, cd;
@@ -1201,14 +1204,14 @@ TEST(EntryPlanner, InFlightLiftOverDragEstimateScalesThePlannedLiftOverDrag) {
   const auto loaded = config::load_mission("x33");
   ASSERT_TRUE(loaded.ok) << loaded.error;
   EntryPlanner planner;
-  ASSERT_EQ(planner.init(loaded.mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(planner, loaded.mission), Status::kOk);
   static ReferenceProfile nominal, scaled;
   RelativeState from = planner.entry_state();
   ASSERT_EQ(planner.plan(from, nominal), Status::kOk);
   from.lift_over_drag_scale = 0.85;
   ASSERT_EQ(planner.plan(from, scaled), Status::kOk);
   OnboardModels models;
-  ASSERT_EQ(models.init(loaded.mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(models, loaded.mission), Status::kOk);
   for (int k = 0; k < scaled.n_points; k += 10) {
     const double h = scaled.radius_m[k] - kEarthRadius_m;
     double cl, cd;
@@ -1227,13 +1230,13 @@ TEST(EntryPlanner, RangingAlphaRestoresALowLiftOverDragPlan) {
   const auto loaded = config::load_mission("x33");
   ASSERT_TRUE(loaded.ok) << loaded.error;
   auto planner = std::make_unique<EntryPlanner>();
-  ASSERT_EQ(planner->init(loaded.mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(*planner, loaded.mission), Status::kOk);
   static ReferenceProfile nominal, low;
   RelativeState from = planner->entry_state();
   ASSERT_EQ(planner->plan(from, nominal), Status::kOk);
   EXPECT_EQ(nominal.ranging_blend, 0.0);
   AlphaProfile profile_alpha;
-  ASSERT_EQ(profile_alpha.init(loaded.mission.alpha_profile), Status::kOk);
+  ASSERT_EQ(init_from_mission(profile_alpha, loaded.mission), Status::kOk);
   for (int k = 0; k < nominal.n_points; ++k) {
     EXPECT_DOUBLE_EQ(nominal.alpha_rad[k], profile_alpha.alpha_rad(nominal.e_norm[k])) << k;
   }
@@ -1242,7 +1245,7 @@ TEST(EntryPlanner, RangingAlphaRestoresALowLiftOverDragPlan) {
   EXPECT_TRUE(low.converged);
   EXPECT_GT(low.ranging_blend, 0.0);
   OnboardModels models;
-  ASSERT_EQ(models.init(loaded.mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(models, loaded.mission), Status::kOk);
   int lowered = 0;
   for (int k = 0; k < low.n_points; ++k) {
     const double a_profile = profile_alpha.alpha_rad(low.e_norm[k]);
@@ -1266,6 +1269,37 @@ TEST(EntryPlanner, RangingAlphaRestoresALowLiftOverDragPlan) {
   from.lift_over_drag_scale = 1.0;
   ASSERT_EQ(planner->plan(from, later), Status::kOk);
   EXPECT_GE(later.ranging_blend, low.ranging_blend);
+}
+
+}  // namespace
+}  // namespace reentry::fsw
+
+namespace reentry::fsw {
+namespace {
+
+TEST(TrackerPhases, TransitionsFollowTheEnergyScheduleAndTheWindow) {
+  // Corridor from E/E_entry = 0.30, terminal range from 0.25 (hand-written expectations).
+  TrackerPhaseMachine m;
+  m.init(0.30, 0.25);
+  EXPECT_EQ(m.advance(0.10, true), TrackerPhase::kInitialDescent);  // nothing before capture
+  m.capture();
+  EXPECT_EQ(m.phase(), TrackerPhase::kPlanned);
+  EXPECT_EQ(m.advance(0.50, true), TrackerPhase::kPlanned);          // the window alone does not move it
+  EXPECT_EQ(m.advance(0.30, false), TrackerPhase::kPlanned);         // strictly below the start
+  EXPECT_EQ(m.advance(0.29, false), TrackerPhase::kHeadingCorridor);
+  EXPECT_TRUE(m.heading_corridor() && !m.terminal());
+  EXPECT_EQ(m.advance(0.35, false), TrackerPhase::kHeadingCorridor);  // energy transitions are one way
+  EXPECT_EQ(m.advance(0.20, false), TrackerPhase::kTerminalRange);
+  EXPECT_EQ(m.advance(0.10, true), TrackerPhase::kFinalReversal);
+  EXPECT_TRUE(m.final_reversal_window() && m.terminal());
+  EXPECT_EQ(m.advance(0.09, false), TrackerPhase::kTerminalRange);    // the window is re-judged
+  EXPECT_EQ(m.advance(0.08, true), TrackerPhase::kFinalReversal);
+  m.reset();
+  EXPECT_EQ(m.phase(), TrackerPhase::kInitialDescent);
+  // Captured late in the flight: every phase due is entered at once.
+  m.capture();
+  EXPECT_EQ(m.advance(0.05, true), TrackerPhase::kFinalReversal);
+  EXPECT_STREQ(to_string(TrackerPhase::kHeadingCorridor), "heading_corridor");
 }
 
 }  // namespace

@@ -62,16 +62,20 @@ n_ex = sum(1 for r in bound if r["pullout_bound"]["exceeded"])
 assert pb["runs"] == 4 and pb["runs_exceeding"] == n_ex and abs(pb["success_rate_upper_bound"] - (4 - n_ex) / 4) < 1e-12, pb
 assert "pullout_bound" not in json.load(open(os.path.join(d, "whole", "report.json")))
 PY
-# Failure modes: four HORUS runs with the pull-out bound (seed 7 fails q*alpha and range long,
-# seed 8 range short, 9 and 10 succeed; none exceeds a limit at the pull-out). The modes
-# partition the failed runs, the range miss is split by side, and the per-violation counts
-# are those of the records.
-"$mc" --mission horus --runs 4 --seed 7 --pullout-bound --out "$dir/modes" >/dev/null 2>&1 || fail "failure-mode campaign"
+# Failure modes: four HORUS runs of the uniform stress set with the pull-out bound (seed 7 fails
+# q*alpha and range long, seed 8 range short, 9 and 10 succeed; none exceeds a limit at the
+# pull-out). The modes partition the failed runs, the range miss is split by side, and the
+# per-violation counts are those of the records. Every record names its dispersion set.
+"$mc" --mission horus --runs 4 --seed 7 --pullout-bound --dispersions stress --out "$dir/modes" >/dev/null 2>&1 ||
+  fail "failure-mode campaign"
 /usr/bin/python3 - "$dir" <<'PY' || exit 1
 import json, sys, os
 d = sys.argv[1]
 runs = [json.loads(l) for l in open(os.path.join(d, "modes", "runs.jsonl")) if l.strip()]
 rep = json.load(open(os.path.join(d, "modes", "report.json")))
+assert all(r["dispersions"] == "stress" for r in runs) and rep["dispersions"] == {"stress": 4}, rep["dispersions"]
+whole = [json.loads(l) for l in open(os.path.join(d, "whole", "runs.jsonl")) if l.strip()]
+assert all(r["dispersions"] == "reference" for r in whole)
 modes = rep["failure_modes"]
 failed = [r for r in runs if not r["success"]]
 assert len(failed) >= 2, "the failure-mode check needs failing runs"
@@ -92,6 +96,7 @@ assert sorted(s for m in pf for s in m["seeds"]) == feasible_failed, pf
 PY
 "$mc" --mission x33 --runs 4 --shard 3/2 --out "$dir/bad" >/dev/null 2>&1 && fail "--shard 3/2 accepted"
 "$mc" --mission x33 --runs 0 --out "$dir/bad" >/dev/null 2>&1 && fail "--runs 0 accepted"
+"$mc" --mission x33 --runs 1 --dispersions wide --out "$dir/bad" >/dev/null 2>&1 && fail "--dispersions wide accepted"
 "$mc" --merge "$dir/s0" "$dir/s0" --out "$dir/bad" >/dev/null 2>&1 && fail "duplicate runs accepted in merge"
 "$mc" --merge "$dir/s0" "$dir/s1" --out "$dir/s1" >/dev/null 2>&1 && fail "merge into one of its inputs accepted"
 [[ -e "$dir/s1/runs.jsonl" ]] && fail "merge wrote into one of its inputs"

@@ -44,10 +44,6 @@ inline void common_fill(config::Mission& m) {
   m.alpha_profile.y = {15.0 * kDeg, 20.0 * kDeg, 35.0 * kDeg, 40.0 * kDeg};
   m.guidance.drag_profile = "three_segment";
   m.guidance.onboard_atmosphere = "exponential";
-  m.guidance.rk4_steps = 600;
-  m.guidance.max_length_iterations = 20;
-  m.guidance.downrange_tol_m = 1500.0;
-  m.guidance.crossrange_tol_m = 1000.0;
   m.environment.us76_table = dir + "/environment/us76.dat";
 }
 

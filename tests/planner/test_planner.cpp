@@ -11,6 +11,7 @@
 #include <new>
 #include <random>
 
+#include "guidance/mission_adapter.hpp"
 #include "models/onboard_models.hpp"
 #include "planner/drag_derivatives.hpp"
 #include "planner/drag_profile.hpp"
@@ -109,7 +110,9 @@ TEST(OnboardModels, ExponentialAndTableAtmosphere) {
   EXPECT_NEAR(exp_atm.density_kgpm3(7050.0), 1.225 / std::exp(1.0), 1e-12);
   EXPECT_NEAR(exp_atm.dlnrho_dr_pm(40000.0), -1.0 / 7050.0, 1e-15);
   OnboardAtmosphere table;
-  ASSERT_EQ(table.init_table(REENTRY_CONFIG_DIR_STR "/environment/us76.dat"), Status::kOk);
+  std::vector<double> h, rho, t;
+  ASSERT_EQ(read_atmosphere_table(REENTRY_CONFIG_DIR_STR "/environment/us76.dat", h, rho, t), "");
+  ASSERT_EQ(table.init_table(h.data(), rho.data(), t.data(), static_cast<int>(h.size())), Status::kOk);
   // Independent US76 layer values (data/README): geopotential 20 km -> 0.0880348 kg/m^3, 216.65 K.
   const double r0 = 6356766.0;
   const double z20 = r0 * 20000.0 / (r0 - 20000.0);
@@ -119,7 +122,9 @@ TEST(OnboardModels, ExponentialAndTableAtmosphere) {
   const double z15 = r0 * 15000.0 / (r0 - 15000.0);
   const double g15 = 9.80665 * std::pow(r0 / (r0 + z15), 2);
   EXPECT_NEAR(table.dlnrho_dr_pm(z15), -g15 / (287.05287 * 216.65), 2e-6);
-  EXPECT_EQ(table.init_table("/nonexistent/us76.dat"), Status::kInvalidInput);
+  EXPECT_NE(read_atmosphere_table("/nonexistent/us76.dat", h, rho, t), "");
+  const double h_down[2] = {1000.0, 0.0}, positive[2] = {1.0, 1.0};
+  EXPECT_EQ(table.init_table(h_down, positive, positive, 2), Status::kInvalidInput);
 }
 
 TEST(OnboardModels, AeroBilinearClamped) {
@@ -143,7 +148,7 @@ TEST(OnboardModels, DragCoefficientEnergySlope) {
   const double cd[4] = {0.11, 0.40, 0.11, 0.40};
   config::Mission m = planner_test::x33_fallback();
   OnboardModels models;
-  ASSERT_EQ(models.init(m), Status::kOk);
+  ASSERT_EQ(init_from_mission(models, m), Status::kOk);
   ASSERT_EQ(models.aero().init(alpha, 2, mach, 2, cl, cd), Status::kOk);
   const double h = 60000.0, v = 5000.0, dv = 1.0;
   const double e_a = specific_energy_Jpkg(kEarthRadius_m + h, v + dv);
@@ -390,7 +395,7 @@ CaseResult run_case(config::Mission m, const char* profile, const char* initial_
   m.guidance.initial_drag = initial_drag;
   auto planner = std::make_unique<EntryPlanner>();
   auto out = std::make_unique<ReferenceProfile>();
-  EXPECT_EQ(planner->init(m), Status::kOk);
+  EXPECT_EQ(init_from_mission(*planner, m), Status::kOk);
   const RelativeState entry = planner->entry_state();
   CaseResult r;
   r.status = planner->plan(entry, *out);
@@ -461,7 +466,7 @@ TEST(EntryPlanner, MidFlightPlanFromHalfEnergy) {
   m.guidance.initial_drag = "actual";
   auto planner = std::make_unique<EntryPlanner>();
   auto first = std::make_unique<ReferenceProfile>();
-  ASSERT_EQ(planner->init(m), Status::kOk);
+  ASSERT_EQ(init_from_mission(*planner, m), Status::kOk);
   ASSERT_EQ(planner->plan(planner->entry_state(), *first), Status::kOk);
   // A state taken from the first plan at about half the entry energy, on its ground track.
   const int k = first->n_points / 2;
@@ -494,7 +499,7 @@ TEST(EntryPlanner, ImpossibleGeometryReportsNoBracket) {
   m.entry.heading_rad += 70.0 * kDeg;  // aim point far to the left of anything reachable
   auto planner = std::make_unique<EntryPlanner>();
   auto out = std::make_unique<ReferenceProfile>();
-  ASSERT_EQ(planner->init(m), Status::kOk);
+  ASSERT_EQ(init_from_mission(*planner, m), Status::kOk);
   const Status s = planner->plan(planner->entry_state(), *out);
   EXPECT_EQ(s, Status::kNoBracket);
   EXPECT_EQ(out->status, Status::kNoBracket);
@@ -509,7 +514,7 @@ TEST(EntryPlanner, RejectsInvalidInput) {
   RelativeState s;
   EXPECT_EQ(planner->plan(s, *out), Status::kInvalidInput);  // not initialised
   config::Mission m = load_or_fallback("x33");
-  ASSERT_EQ(planner->init(m), Status::kOk);
+  ASSERT_EQ(init_from_mission(*planner, m), Status::kOk);
   s = planner->entry_state();
   s.latitude_rad = std::nan("");
   EXPECT_EQ(planner->plan(s, *out), Status::kNonFinite);
@@ -519,7 +524,7 @@ TEST(EntryPlanner, RejectsInvalidInput) {
   s.energy_Jpkg = 0.0;
   EXPECT_EQ(planner->plan(s, *out), Status::kInvalidInput);  // below TAEM energy
   m.guidance.drag_profile = "wiggly";
-  EXPECT_EQ(planner->init(m), Status::kInvalidInput);
+  EXPECT_EQ(init_from_mission(*planner, m), Status::kInvalidInput);
 }
 
 TEST(EntryPlanner, PlanDoesNotAllocate) {
@@ -527,7 +532,7 @@ TEST(EntryPlanner, PlanDoesNotAllocate) {
   m.guidance.drag_profile = "smooth";
   auto planner = std::make_unique<EntryPlanner>();
   auto out = std::make_unique<ReferenceProfile>();
-  ASSERT_EQ(planner->init(m), Status::kOk);
+  ASSERT_EQ(init_from_mission(*planner, m), Status::kOk);
   const RelativeState entry = planner->entry_state();
   const long before = g_allocations.load();
   const Status s = planner->plan(entry, *out);
@@ -541,7 +546,7 @@ TEST(EntryPlanner, TabulatedAtmosphereOptionConverges) {
   m.guidance.onboard_atmosphere = "table";
   m.environment.us76_table = REENTRY_CONFIG_DIR_STR "/environment/us76.dat";
   auto planner = std::make_unique<EntryPlanner>();
-  ASSERT_EQ(planner->init(m), Status::kOk);
+  ASSERT_EQ(init_from_mission(*planner, m), Status::kOk);
   ASSERT_EQ(planner->models().atmosphere().kind(), AtmosphereKind::kTable);
   expect_converged(run_case(m, "three_segment", "actual"));
 }
@@ -551,7 +556,7 @@ TEST(EntryPlanner, ClosedCorridorIsReported) {
   m.constraints.heat_flux_max_Wpm2 = 1e3;  // 1 kW/m^2: maximum drag below Lmin nearly everywhere
   auto planner = std::make_unique<EntryPlanner>();
   auto out = std::make_unique<ReferenceProfile>();
-  ASSERT_EQ(planner->init(m), Status::kOk);
+  ASSERT_EQ(init_from_mission(*planner, m), Status::kOk);
   EXPECT_EQ(planner->plan(planner->entry_state(), *out), Status::kCorridorClosed);
   EXPECT_EQ(out->status, Status::kCorridorClosed);
   EXPECT_GT(planner->diagnostics().corridor_closed_points, EntryPlanner::kGrid / 10);
@@ -568,7 +573,7 @@ TEST(EntryPlanner, CorridorFloorCarriesTheEarthRateTerm) {
   config::Mission east = loaded.mission;
   auto planner = std::make_unique<EntryPlanner>();
   auto out = std::make_unique<ReferenceProfile>();
-  ASSERT_EQ(planner->init(east), Status::kOk);
+  ASSERT_EQ(init_from_mission(*planner, east), Status::kOk);
   planner->plan(planner->entry_state(), *out);
   // With the term the Orbiter's 40 deg corridor is open (without it, closed over about a
   // quarter of the grid between 7.2 and 5.5 km/s where the heat-flux limit is lowest).
@@ -584,12 +589,12 @@ TEST(EntryPlanner, CorridorFloorCarriesTheEarthRateTerm) {
   west.taem.longitude_rad = 2.0 * east.entry.longitude_rad - east.taem.longitude_rad;
   west.taem.heading_rad = -east.taem.heading_rad;
   auto planner_w = std::make_unique<EntryPlanner>();
-  ASSERT_EQ(planner_w->init(west), Status::kOk);
+  ASSERT_EQ(init_from_mission(*planner_w, west), Status::kOk);
   planner_w->plan(planner_w->entry_state(), *out);
   OnboardModels models;
-  ASSERT_EQ(models.init(east), Status::kOk);
+  ASSERT_EQ(init_from_mission(models, east), Status::kOk);
   AlphaProfile alpha;
-  ASSERT_EQ(alpha.init(east.alpha_profile), Status::kOk);
+  ASSERT_EQ(init_from_mission(alpha, east), Status::kOk);
   int checked = 0;
   for (int k = 0; k < EntryPlanner::kGrid; k += 20) {
     ASSERT_NEAR(planner_w->grid_energy(k), e_grid[k], 1e-6 * e_grid[k]);
@@ -615,35 +620,63 @@ TEST(EntryPlanner, CorridorFloorCarriesTheEarthRateTerm) {
   EXPECT_GT(checked, 5);
 }
 
-TEST(EntryPlanner, OrbiterMissionRangeIsShorterThanItsHeatLimitedMinimum) {
-  // Table 3.3 as we read it: 6534 km from entry to TAEM, but flying the heat-flux limit
-  // (Chapman, 0.3 m nose, 70 BTU/ft^2/s) all the way takes about 9200 km. No length fits: the
-  // planner reports range_too_long and hands out the maximum-drag profile as the best effort
-  // (the drag on the corridor maximum wherever the level is above it).
+namespace {
+// int dE / D_max over the planner's grid (trapezoid in 1/D): the range of the maximum-drag
+// profile, independent of the fit.
+double maximum_drag_range_m(const EntryPlanner& planner) {
+  double range_m = 0.0;
+  for (int k = 0; k + 1 < EntryPlanner::kGrid; ++k) {
+    const double de = planner.grid_energy(k) - planner.grid_energy(k + 1);
+    range_m += 0.5 * de * (1.0 / planner.corridor_max(k) + 1.0 / planner.corridor_max(k + 1));
+  }
+  return range_m;
+}
+}  // namespace
+
+TEST(EntryPlanner, OrbiterRangeLiesInsideItsLeadingEdgeHeatLimitedFootprint) {
+  // Table 3.3's 70 BTU/(ft^2 s) bounds Betts's wing-leading-edge heating (the vehicle file's
+  // heating_model): the maximum-drag profile flies well short of the 6541 km to Kennedy, and
+  // the plan from the entry interface converges onto the TAEM point.
   config::LoadResult loaded = config::load_mission("orbiter");
   ASSERT_TRUE(loaded.ok) << loaded.error;
+  ASSERT_EQ(loaded.mission.vehicle.heating_model, config::HeatingModel::kBettsLeadingEdge);
   auto planner = std::make_unique<EntryPlanner>();
   auto out = std::make_unique<ReferenceProfile>();
-  ASSERT_EQ(planner->init(loaded.mission), Status::kOk);
+  ASSERT_EQ(init_from_mission(*planner, loaded.mission), Status::kOk);
+  const RelativeState entry = planner->entry_state();
+  EXPECT_EQ(planner->plan(entry, *out), Status::kOk);
+  EXPECT_TRUE(out->converged);
+  const double desired_m = planner->diagnostics().s_initial_m;
+  EXPECT_LT(maximum_drag_range_m(*planner), 0.8 * desired_m);
+  for (int k = 0; k < out->n_points; ++k) EXPECT_LE(out->drag_mps2[k], planner->corridor_max(k) * (1.0 + 1e-12)) << k;
+  EXPECT_LT(ground_track_miss_km(*out, entry, loaded.mission), 5.0);
+}
+
+TEST(EntryPlanner, OrbiterReadWithAStagnationPointHeatLimitIsInfeasible) {
+  // The same mission with the limit applied to Chapman's stagnation point (3.5) at the 0.3 m
+  // nose: flying the heat-flux limit all the way takes about 9200 km against 6534 km. No length
+  // fits: the planner reports range_too_long and hands out the maximum-drag profile as the best
+  // effort (the drag on the corridor maximum wherever the level is above it).
+  config::LoadResult loaded = config::load_mission("orbiter");
+  ASSERT_TRUE(loaded.ok) << loaded.error;
+  loaded.mission.vehicle.heating_model = config::HeatingModel::kChapmanStagnation;
+  auto planner = std::make_unique<EntryPlanner>();
+  auto out = std::make_unique<ReferenceProfile>();
+  ASSERT_EQ(init_from_mission(*planner, loaded.mission), Status::kOk);
   const RelativeState entry = planner->entry_state();
   const Status s = planner->plan(entry, *out);
   EXPECT_EQ(s, Status::kRangeTooLong);
   EXPECT_EQ(out->status, Status::kRangeTooLong);
   EXPECT_FALSE(out->converged);
   ASSERT_EQ(out->n_points, EntryPlanner::kGrid);
-  double min_range_m = 0.0;  // int dE / D_max over the grid (trapezoid in 1/D): independent of the fit
   int on_max = 0;
-  for (int k = 0; k + 1 < EntryPlanner::kGrid; ++k) {
-    const double de = planner->grid_energy(k) - planner->grid_energy(k + 1);
-    min_range_m += 0.5 * de * (1.0 / planner->corridor_max(k) + 1.0 / planner->corridor_max(k + 1));
-  }
   for (int k = 0; k < out->n_points; ++k) {
     EXPECT_LE(out->drag_mps2[k], planner->corridor_max(k) * (1.0 + 1e-12)) << k;
     if (out->drag_mps2[k] >= planner->corridor_max(k) * (1.0 - 1e-9)) ++on_max;
   }
   EXPECT_GT(on_max, 9 * EntryPlanner::kGrid / 10);
   const double desired_m = planner->diagnostics().s_initial_m;
-  EXPECT_GT(min_range_m, 1.3 * desired_m);
+  EXPECT_GT(maximum_drag_range_m(*planner), 1.3 * desired_m);
   // The reported overshoot is the one of the flown best effort: by the independent ground
   // track, the profile ends past the TAEM point by about the same distance.
   const double overshoot_m = -planner->diagnostics().downrange_err_m;

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "app/guidance_node.hpp"
+#include "transport/monotonic_clock.hpp"
 
 namespace {
 
@@ -70,16 +71,21 @@ class LawDouble : public exec::CommandLaw {
 }  // namespace
 
 int main(int argc, char** argv) {
+  namespace app = reentry::fsw::app;
   CLI::App cli{"SIL test double of the guidance process"};
-  std::string mission, mode = "lockstep", replay, status_json;
-  bool compare = false;
-  double link_timeout_s = 2.0;
+  std::string mission, mode = "lockstep", replay, replay_log, status_json, log_path;
+  bool compare = false, unsealed = false;
+  app::LiveOptions live;
   cli.add_option("--mission", mission);
   cli.add_option("--mode", mode);
   cli.add_option("--replay", replay);
   cli.add_flag("--compare", compare);
+  cli.add_flag("--unsealed", unsealed);
+  cli.add_option("--replay-log", replay_log);
   cli.add_option("--status-json", status_json);
-  cli.add_option("--link-timeout", link_timeout_s);
+  cli.add_option("--log", log_path);
+  cli.add_option("--link-timeout-ticks", live.link_timeout_ticks);
+  cli.add_option("--startup-timeout", live.startup_timeout_s);
   CLI11_PARSE(cli, argc, argv);
 
   static PlanDouble planner;
@@ -92,19 +98,26 @@ int main(int argc, char** argv) {
   cfg.mode = !replay.empty() ? exec::PlanMode::kSynchronous
              : mode == "realtime" ? exec::PlanMode::kRealtime
                                   : exec::PlanMode::kLockstep;
-  if (executive->init(cfg, planner, law) != Status::kOk) return reentry::fsw::app::kExitUsage;
-  auto node = std::make_unique<reentry::fsw::app::GuidanceNode>(*executive, &convert, nullptr, cfg.gnc_rate_hz);
+  if (executive->init(cfg, planner, law) != Status::kOk) return app::kExitUsage;
+  executive->set_cycle_clock(&reentry::transport::thread_cpu_ns);
+  auto node = std::make_unique<app::GuidanceNode>(*executive, &convert, nullptr, cfg.gnc_rate_hz);
   int rc = 0;
+  auto net = std::make_unique<reentry::transport::UdpmSocket>();  // outlives the node's use of it
   if (!replay.empty()) {
-    rc = node->run_replay(replay, compare);
+    rc = node->run_replay(replay, compare, replay_log, unsealed);
   } else {
-    lcm::LCM lcm;
-    if (!lcm.good()) return reentry::fsw::app::kExitUsage;
-    rc = node->run_live(lcm, mode == "realtime" ? reentry::fsw::app::RunMode::kRealtime
-                                                : reentry::fsw::app::RunMode::kLockstep,
-                        link_timeout_s, 30.0);
+    const app::RunMode run_mode = mode == "realtime" ? app::RunMode::kRealtime : app::RunMode::kLockstep;
+    reentry::transport::UdpmUrl url;
+    std::string err;
+    if (!reentry::transport::parse_udpm_url(reentry::transport::default_udpm_url(), url, err) || !net->open(url, err) ||
+        !node->open_log(log_path, run_mode, err)) {
+      std::fprintf(stderr, "sil_guidance_double: %s\n", err.c_str());
+      return app::kExitTransport;
+    }
+    rc = node->run_live(*net, run_mode, live);
+    node->close_log();
   }
-  node->write_status_json(status_json);
+  node->write_status_json(status_json, rc);
   executive->shutdown();
   return rc;
 }

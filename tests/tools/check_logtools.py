@@ -69,7 +69,7 @@ def check_rows(a):
         return
     info = json.loads(out)
     chans = info["channels"]
-    for ch in ("NAV_STATE", "TRUTH", "GUIDANCE_CMD", "GUIDANCE_STATUS", "PLAN", "RUN_CONTROL"):
+    for ch in ("NAV_STATE", "TRUTH", "GUIDANCE_CMD", "GUIDANCE_STATUS", "TRACKER_STATUS", "PLAN", "RUN_CONTROL"):
         expect(ch in chans, f"loginfo lacks channel {ch}")
         path = os.path.join(out_dir, ch + ".csv")
         expect(os.path.isfile(path), f"missing {path}")
@@ -142,9 +142,9 @@ def check_plots(a):
     expect(os.path.isdir(os.path.join(run_dir, "run_csv")), "plot did not run log2csv first")
     plots = os.path.join(run_dir, "plots")
     names = sorted(n for n in os.listdir(plots) if n.endswith(".png")) if os.path.isdir(plots) else []
-    expect(len(names) >= 6, f"only {len(names)} PNG files: {names}")
+    expect(len(names) >= 7, f"only {len(names)} PNG files: {names}")
     for want in ("ground_track", "altitude_velocity", "drag_energy", "bank_alpha", "gamma_energy",
-                 "constraints_time"):
+                 "constraints_time", "tracker_status"):
         expect(want + ".png" in names, f"{want}.png missing")
     for n in names:
         p = os.path.join(plots, n)

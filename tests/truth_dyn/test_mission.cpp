@@ -49,17 +49,19 @@ reentry::config::Mission x33_test_mission() {
   m.environment.us76_table = std::string(REENTRY_CONFIG_DIR) + "/environment/us76.dat";
   m.environment.gravity_coefficients = std::string(REENTRY_CONFIG_DIR) + "/environment/egm96_deg20.txt";
   m.environment.wind_profile = std::string(REENTRY_CONFIG_DIR) + "/environment/earthgram_nominal_wind.txt";
-  m.dispersions.entry_flight_path_rad = 0.2 * kDeg;
-  m.dispersions.entry_heading_rad = 0.1 * kDeg;
-  m.dispersions.entry_velocity_mps = 10.0;
-  m.dispersions.entry_position_rad = 0.05 * kDeg;
-  m.dispersions.density_scale = 0.15;
+  using reentry::config::Distribution;
+  m.dispersions.entry_flight_path_rad = reentry::config::Dispersion{0.2 * kDeg, Distribution::kUniform};
+  m.dispersions.entry_heading_rad = reentry::config::Dispersion{0.1 * kDeg, Distribution::kUniform};
+  m.dispersions.entry_velocity_mps = reentry::config::Dispersion{10.0, Distribution::kUniform};
+  m.dispersions.entry_position_rad = reentry::config::Dispersion{0.05 * kDeg, Distribution::kUniform};
+  m.dispersions.density_scale = reentry::config::Dispersion{0.15, Distribution::kUniform};
   m.dispersions.density_perturbation = 0.05;
-  m.dispersions.cl_scale = 0.1;
-  m.dispersions.cd_scale = 0.1;
-  m.dispersions.mass_scale = 0.05;
+  m.dispersions.cl_scale = reentry::config::Dispersion{0.1, Distribution::kUniform};
+  m.dispersions.cd_scale = reentry::config::Dispersion{0.1, Distribution::kUniform};
+  m.dispersions.mass_scale = reentry::config::Dispersion{0.05, Distribution::kUniform};
   m.dispersions.wind_scale_min = 0.5;
   m.dispersions.wind_scale_max = 1.5;
+  m.dispersions.wind_scale_distribution = Distribution::kUniform;
   return m;
 }
 

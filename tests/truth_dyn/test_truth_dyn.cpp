@@ -426,12 +426,12 @@ TEST(Dispersions, MappingIsExplicitAndReproducible) {
   const DispersionDraw d = draw_dispersions(w, 42);
   std::mt19937_64 e(42);
   const double u0 = static_cast<double>(e() >> 11) / 9007199254740992.0;
-  EXPECT_EQ(d.entry_flight_path_rad, w.entry_flight_path_rad * (2.0 * u0 - 1.0));
+  EXPECT_EQ(d.entry_flight_path_rad, w.entry_flight_path_rad.value * (2.0 * u0 - 1.0));
   const DispersionDraw d2 = draw_dispersions(w, 42);
   EXPECT_EQ(d.cl_scale, d2.cl_scale);
   EXPECT_EQ(d.density_seed, d2.density_seed);
-  EXPECT_LE(std::fabs(d.density_scale - 1.0), w.density_scale);
-  EXPECT_LE(std::fabs(d.mass_scale - 1.0), w.mass_scale);
+  EXPECT_LE(std::fabs(d.density_scale - 1.0), w.density_scale.value);
+  EXPECT_LE(std::fabs(d.mass_scale - 1.0), w.mass_scale.value);
   EXPECT_GE(d.wind_scale, w.wind_scale_min);
   EXPECT_LE(d.wind_scale, w.wind_scale_max);
   // Over many seeds the draws fill the interval and stay inside it.
@@ -441,10 +441,57 @@ TEST(Dispersions, MappingIsExplicitAndReproducible) {
     lo = std::min(lo, x);
     hi = std::max(hi, x);
   }
-  EXPECT_GE(lo, -w.cd_scale);
-  EXPECT_LE(hi, w.cd_scale);
-  EXPECT_LT(lo, -0.95 * w.cd_scale);
-  EXPECT_GT(hi, 0.95 * w.cd_scale);
+  EXPECT_GE(lo, -w.cd_scale.value);
+  EXPECT_LE(hi, w.cd_scale.value);
+  EXPECT_LT(lo, -0.95 * w.cd_scale.value);
+  EXPECT_GT(hi, 0.95 * w.cd_scale.value);
+}
+
+TEST(Dispersions, TruncatedNormalQuantilesMatchTheNormalTable) {
+  // Independent truth: standard normal table values. Quantile u of N(0,1) truncated at +-3:
+  // Phi(z) = Phi(-3) + u (Phi(3) - Phi(-3)), Phi(-3) = 0.0013498980, Phi(3) - Phi(-3) = 0.9973002039.
+  EXPECT_EQ(truncated_standard_normal(0.5), 0.0);
+  EXPECT_NEAR(truncated_standard_normal((0.8413447461 - 0.0013498980) / 0.9973002039), 1.0, 1e-8);   // Phi(1)
+  EXPECT_NEAR(truncated_standard_normal((0.0227501319 - 0.0013498980) / 0.9973002039), -2.0, 1e-8);  // Phi(-2)
+  EXPECT_NEAR(truncated_standard_normal(0.0), -3.0, 1e-9);
+  EXPECT_NEAR(truncated_standard_normal(1.0 - 1e-16), 3.0, 1e-6);
+  EXPECT_NEAR(truncated_standard_normal(0.3), -truncated_standard_normal(0.7), 1e-14);
+}
+
+TEST(Dispersions, GaussianSetIsThreeSigmaTruncatedAndShareTheUniformSetsQuantiles) {
+  config::Dispersions uni = truth_test::x33_test_mission().dispersions;
+  config::Dispersions gauss = uni;
+  for (config::Dispersion* q : {&gauss.entry_flight_path_rad, &gauss.entry_heading_rad, &gauss.entry_velocity_mps,
+                                &gauss.entry_position_rad, &gauss.density_scale, &gauss.cl_scale, &gauss.cd_scale,
+                                &gauss.mass_scale}) {
+    q->distribution = config::Distribution::kGaussian;
+  }
+  gauss.wind_scale_distribution = config::Distribution::kGaussian;
+  constexpr int kSeeds = 20000;
+  double sum = 0.0, sum2 = 0.0, inside_1sigma = 0.0, wind_sum = 0.0, max_abs = 0.0;
+  const double w = gauss.cl_scale.value;  // 3 sigma
+  for (std::uint64_t s = 0; s < kSeeds; ++s) {
+    const DispersionDraw g = draw_dispersions(gauss, s);
+    const DispersionDraw u = draw_dispersions(uni, s);
+    const double x = g.cl_scale - 1.0;
+    sum += x;
+    sum2 += x * x;
+    inside_1sigma += std::fabs(x) <= w / 3.0 ? 1.0 : 0.0;
+    max_abs = std::max(max_abs, std::fabs(x));
+    wind_sum += g.wind_scale;
+    // Same engine output per quantity: the same sign (quantile above or below the median).
+    EXPECT_EQ(x > 0.0, u.cl_scale - 1.0 > 0.0) << s;
+    EXPECT_EQ(g.density_seed, u.density_seed) << s;
+  }
+  // Truncated at 3 sigma: sigma of the truncated normal is 0.98658 sigma; 68.27 % within 1 sigma
+  // of the untruncated one becomes 68.45 %.
+  const double mean = sum / kSeeds, sd = std::sqrt(sum2 / kSeeds - mean * mean);
+  EXPECT_NEAR(mean, 0.0, 4.0 * (w / 3.0) / std::sqrt(kSeeds));
+  EXPECT_NEAR(sd / (w / 3.0), 0.98658, 0.015);
+  EXPECT_NEAR(inside_1sigma / kSeeds, 0.6845, 0.01);
+  EXPECT_LE(max_abs, w);
+  EXPECT_GT(max_abs, 0.9 * w);  // the tail is reached
+  EXPECT_NEAR(wind_sum / kSeeds, 0.5 * (gauss.wind_scale_min + gauss.wind_scale_max), 0.01);
 }
 
 TEST(Dispersions, SameSeedSameRunDifferentSeedDifferentRun) {

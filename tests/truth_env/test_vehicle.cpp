@@ -206,6 +206,44 @@ TEST(Heating, ChapmanHandComputed) {
   EXPECT_NEAR(rt::chapman_heat_flux_Wpm2(1e-4, 7000.0, 0.8), 747493.118, 1e-2);
 }
 
+// Betts's leading-edge fit evaluated by hand in its own units: q = qa(a) 17700 sqrt(rho)
+// (1e-4 v)^3.07 BTU/(ft^2 s), rho in slug/ft^3, v in ft/s, a in deg (values computed with a
+// calculator from the published coefficients).
+namespace {
+constexpr double kSlugPerFt3_kgpm3 = 515.378818393196;   // 14.59390294 kg / 0.3048^3 m^3
+constexpr double kFtps_mps = 0.3048;
+constexpr double kBtuPerFt2s_Wpm2 = 11356.526682226975;  // 1055.05585262 J / 0.3048^2 m^2
+struct BettsCase {
+  double rho_slugpft3, v_ftps, alpha_deg, q_btu;
+};
+constexpr BettsCase kBettsCases[] = {
+    {2e-7, 20000.0, 40.0, 38.189009652307355},  // qa 0.5744973704, q_r 66.4737762
+    {1e-6, 15000.0, 30.0, 40.258516456617386},  // qa 0.6550649087, q_r 61.4572937
+    {5e-8, 25000.0, 45.0, 35.702136852170234},  // qa 0.5414521907, q_r 65.9377457
+    {2e-7, 20000.0, 0.0, 70.94201718215056},    // qa = c0 = 1.0672181
+};
+}  // namespace
+
+TEST(Heating, BettsLeadingEdgeHandComputedInUsUnits) {
+  for (const BettsCase& c : kBettsCases) {
+    const double q = rt::betts_leading_edge_heat_flux_Wpm2(c.rho_slugpft3 * kSlugPerFt3_kgpm3, c.v_ftps * kFtps_mps,
+                                                           c.alpha_deg * kDeg);
+    EXPECT_NEAR(q / kBtuPerFt2s_Wpm2, c.q_btu, 1e-9 * c.q_btu) << "alpha " << c.alpha_deg;
+  }
+}
+
+TEST(Heating, VehicleModelSelectsTheFormula) {
+  const double rho = 1e-4, v = 7000.0, a = 40.0 * kDeg;
+  EXPECT_EQ(rt::heat_flux_Wpm2(cfg::HeatingModel::kChapmanStagnation, rho, v, a, 0.8),
+            rt::chapman_heat_flux_Wpm2(rho, v, 0.8));
+  EXPECT_EQ(rt::heat_flux_Wpm2(cfg::HeatingModel::kBettsLeadingEdge, rho, v, a, 0.8),
+            rt::betts_leading_edge_heat_flux_Wpm2(rho, v, a));
+  // The leading-edge heat flux falls with alpha (qa decreasing on 0-50 deg) and is below the
+  // 0.3 m stagnation point's at the Orbiter's 40 deg: about 0.53 of it at 7 km/s.
+  EXPECT_LT(rt::betts_leading_edge_heat_flux_Wpm2(rho, v, 45.0 * kDeg), rt::betts_leading_edge_heat_flux_Wpm2(rho, v, a));
+  EXPECT_LT(rt::betts_leading_edge_heat_flux_Wpm2(rho, v, a), 0.6 * rt::chapman_heat_flux_Wpm2(rho, v, 0.3));
+}
+
 TEST(Heating, LoadFactorHandComputed) {
   // (1e5 cos 40 + 5e4 sin 40) / (1e4 * 9.80665)
   EXPECT_NEAR(rt::body_normal_load_factor(1e5, 5e4, 40.0 * kDeg, 1e4), 1.10887841206, 1e-10);

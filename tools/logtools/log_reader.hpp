@@ -1,5 +1,6 @@
-// Reading lcm-logger files (LCM 1.3.1 event log format) with lcm::LogFile and
-// dispatching each event to the generated message type whose fingerprint it carries.
+// Reading LCM event logs (lcm-logger / lcm::LogFile format) with the validating reader of
+// common/transport and dispatching each event to the generated message type whose
+// fingerprint it carries.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -31,7 +32,7 @@ std::map<int64_t, std::unique_ptr<MessageHandler>> make_handlers();
 
 struct LogEventView {
   int64_t event_number;
-  int64_t timestamp_us;  // logger receive time (wall clock)
+  int64_t timestamp_us;  // logger receive / process send time (wall clock)
   const std::string* channel;
   const void* data;
   int size;
@@ -42,10 +43,16 @@ struct LogScan {
   int64_t events = 0;
   int64_t file_bytes = 0;
   int64_t bytes_consumed = 0;
-  int64_t skipped_bytes = 0;     // garbage between events (lcm resynchronises on the sync word)
+  int64_t skipped_bytes = 0;     // garbage between events (skipped to the next plausible event)
+  int64_t eventnum_gaps = 0;     // jumps in the event numbers: events missing from the middle
   bool truncated_tail = false;   // trailing bytes that do not form a whole event
   std::string error;             // non-empty: the file cannot be read as an LCM log at all
-  bool malformed() const { return !error.empty() || skipped_bytes > 0 || truncated_tail; }
+  bool sealed = false;           // closed by our writer with a matching seal (LOG_SEAL)
+  std::string seal_problem;      // a seal that does not match its events
+  int64_t seal_dropped = 0;      // records its writer dropped
+  bool malformed() const {
+    return !error.empty() || skipped_bytes > 0 || truncated_tail || eventnum_gaps > 0 || !seal_problem.empty();
+  }
   std::string describe() const;
 };
 

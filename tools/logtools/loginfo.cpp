@@ -9,6 +9,7 @@
 #include <string>
 
 #include "log_reader.hpp"
+#include "transport/run_log.hpp"
 
 using namespace reentry::logtools;
 
@@ -49,15 +50,27 @@ int main(int argc, char** argv) {
   auto handlers = make_handlers();
   std::map<std::string, ChannelStats> stats;
   int64_t first_event_us = 0, last_event_us = 0;
+  reentry::transport::RunLogCheck run_check;
   const LogScan scan = read_log(log_path, [&](const LogEventView& ev) {
     if (stats.empty()) first_event_us = ev.timestamp_us;
     last_event_us = ev.timestamp_us;
     classify_event(handlers, ev, stats[*ev.channel]);
+    run_check.add(*ev.channel, static_cast<const std::uint8_t*>(ev.data), ev.size);
   });
+  const reentry::transport::RunCompleteness run = run_check.result();
   if (!scan.error.empty()) {
     std::cerr << "loginfo: error: " << scan.error << "\n";
     return 2;
   }
+  // Is it a complete run log (the replay's rule: every tick from 0, a command for each,
+  // END_OF_RUN after the last sample) and whole (sealed, nothing dropped by its writer)?
+  const bool run_whole = run.complete() && !scan.malformed() && scan.sealed && scan.seal_dropped == 0;
+  const std::string run_problem =
+      scan.malformed()         ? "damaged log: " + scan.describe()
+      : !run.problem().empty() ? run.problem()
+      : !scan.sealed           ? std::string("not sealed: its writer did not close it, or another tool wrote it")
+      : scan.seal_dropped > 0  ? "its writer dropped " + std::to_string(scan.seal_dropped) + " records"
+                               : std::string();
 
   if (as_json) {
     nlohmann::ordered_json j;
@@ -67,6 +80,19 @@ int main(int argc, char** argv) {
     j["event_span_s"] = static_cast<double>(last_event_us - first_event_us) * 1e-6;
     j["malformed"] = scan.malformed();
     if (scan.malformed()) j["problem"] = scan.describe();
+    nlohmann::ordered_json r;
+    r["complete"] = run_whole;
+    r["problem"] = run_problem;
+    r["sealed"] = scan.sealed;
+    r["nav_events"] = run.nav_events;
+    r["nav_ticks"] = run.nav_ticks;
+    r["first_tick"] = run.first_tick;
+    r["last_tick"] = run.last_tick;
+    r["missing_ticks"] = run.missing_ticks;
+    r["unanswered_ticks"] = run.unanswered_ticks;
+    r["end_of_run"] = run.end_of_run;
+    r["end_event"] = run.end_of_run ? reentry::transport::end_event_name(run.end_event) : "";
+    j["run"] = r;
     for (const auto& [ch, st] : stats) {
       const Timing t = timing_of(st);
       nlohmann::ordered_json c;
@@ -88,6 +114,12 @@ int main(int argc, char** argv) {
     std::printf("events   %lld in %lld bytes, logger time span %.3f s\n", static_cast<long long>(scan.events),
                 static_cast<long long>(scan.file_bytes),
                 static_cast<double>(last_event_us - first_event_us) * 1e-6);
+    if (run.nav_events > 0) {
+      std::printf("run      %s\n", run_whole ? ("complete and sealed: ticks 0.." + std::to_string(run.last_tick) +
+                                                ", END_OF_RUN " + reentry::transport::end_event_name(run.end_event))
+                                                   .c_str()
+                                          : ("incomplete: " + run_problem).c_str());
+    }
     std::printf("\n%-18s %-28s %9s %9s %10s %10s %6s\n", "channel", "type", "messages", "skipped", "rate_Hz",
                 "span_s", "clock");
     for (const auto& [ch, st] : stats) {

@@ -6,6 +6,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <reentry/guidance_cmd_t.hpp>
 #include <reentry/guidance_status_t.hpp>
+#include <reentry/tracker_status_t.hpp>
 #include <reentry/nav_state_t.hpp>
 #include <reentry/plan_t.hpp>
 #include <reentry/run_control_t.hpp>
@@ -290,11 +291,22 @@ int main(int argc, char** argv) {
     st.plan_seq = plan_seq;
     st.drag_err_mps2 = 0.01 * s.drag_mps2;
     write(log, "GUIDANCE_STATUS", st, wall + 25);
+
+    reentry::tracker_status_t ts{};
+    ts.utime = utime;
+    ts.tick = static_cast<int64_t>(k);
+    ts.phase = static_cast<int8_t>(k < replan_tick ? 1 : 2);
+    ts.drag_ref_mps2 = 0.99 * s.drag_mps2;
+    ts.drag_err_mps2 = 0.01 * s.drag_mps2;
+    ts.drag_ratio = 1.0;
+    ts.lift_over_drag_ratio = 1.0;
+    ts.corridor_half_width_rad = k < replan_tick ? 0.0 : 0.1;
+    write(log, "TRACKER_STATUS", ts, wall + 27);
   }
   const Sample& last = traj.back();
   reentry::run_control_t rc{};
   rc.utime = static_cast<int64_t>(std::llround(last.t_s * 1e6));
-  rc.tick = static_cast<int64_t>(traj.size() - 1);
+  rc.tick = static_cast<int64_t>(traj.size());  // as the simulator: the end tick has no sample
   rc.command = reentry::run_control_t::END_OF_RUN;
   rc.event = reentry::run_control_t::EVENT_TAEM;
   rc.final_altitude_m = last.r_m - kEarthRadius_m;

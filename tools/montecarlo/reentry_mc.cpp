@@ -1,5 +1,8 @@
 // reentry_mc: Monte Carlo dispersion campaigns of closed-loop missions flown in process.
 //   reentry_mc --mission M --runs N --seed S --out DIR [--jobs J] [--shard i/K] [--nominal]
+//              [--dispersions reference|stress]
+// --dispersions picks the mission's dispersion set: [dispersions] (reference, default) or
+// [stress_dispersions] (stress); every record and the report name it.
 //   reentry_mc --merge DIR1 [DIR2 ...] --out DIR
 // --guidance-knows-vehicle gives the guidance each run's drawn C_L, C_D and mass (diagnosis of
 // what the unobservable aerodynamic and mass errors cost; every record is marked).
@@ -193,6 +196,11 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
   };
   json rep;
   rep["mission"] = mission;
+  // The dispersion set(s) of the records ("reference", "stress", "nominal"; older records: none).
+  std::map<std::string, int> sets;
+  for (const auto& r : runs) ++sets[r.contains("dispersions") ? r["dispersions"].get<std::string>() : "unrecorded"];
+  rep["dispersions"] = json::object();
+  for (const auto& [set, count] : sets) rep["dispersions"][set] = count;
   rep["runs"] = n;
   rep["successes"] = successes;
   rep["success_rate"] = n > 0 ? static_cast<double>(successes) / n : 0.0;
@@ -278,8 +286,10 @@ int write_report(const std::vector<std::string>& dirs, const std::string& out, c
   const json rep = summarise(runs, name);
   fs::create_directories(out);
   std::ofstream(fs::path(out) / "report.json") << rep.dump(2) << "\n";
-  std::printf("%s: %d/%d successful (%.1f %%, 95 %% CI %.1f-%.1f %%), miss p50 %.2f km, p95 %.2f km, max %.2f km\n",
-              name.c_str(), rep["successes"].get<int>(), rep["runs"].get<int>(), 100.0 * rep["success_rate"].get<double>(),
+  std::string sets;
+  for (const auto& [set, count] : rep["dispersions"].items()) sets += (sets.empty() ? "" : "+") + set;
+  std::printf("%s (%s): %d/%d successful (%.1f %%, 95 %% CI %.1f-%.1f %%), miss p50 %.2f km, p95 %.2f km, max %.2f km\n",
+              name.c_str(), sets.c_str(), rep["successes"].get<int>(), rep["runs"].get<int>(), 100.0 * rep["success_rate"].get<double>(),
               100.0 * rep["ci95_low"].get<double>(), 100.0 * rep["ci95_high"].get<double>(),
               rep["miss_km_p50"].get<double>(), rep["miss_km_p95"].get<double>(), rep["miss_km_max"].get<double>());
   if (rep.contains("miss_along_km") && rep.contains("miss_cross_km")) {
@@ -317,7 +327,7 @@ int write_report(const std::vector<std::string>& dirs, const std::string& out, c
 
 int main(int argc, char** argv) {
   CLI::App app{"reentry Monte Carlo campaign (closed loop, in process)"};
-  std::string mission_arg, out, shard;
+  std::string mission_arg, out, shard, dispersion_set = "reference";
   int runs = 0, jobs = 0;
   std::uint64_t seed = 1;
   bool nominal = false, trace = false, pullout_bound = false, knows_vehicle = false;
@@ -329,6 +339,9 @@ int main(int argc, char** argv) {
   app.add_option("--jobs", jobs, "parallel runs (default: all cores)");
   app.add_option("--shard", shard, "i/K: fly only the runs r with r % K == i");
   app.add_flag("--nominal", nominal, "no dispersions (every run nominal)");
+  app.add_option("--dispersions", dispersion_set,
+                 "dispersion set: reference ([dispersions], Gaussian 3 sigma) or stress ([stress_dispersions])")
+      ->check(CLI::IsMember({"reference", "stress"}));
   app.add_flag("--trace", trace, "write each run's trajectory (1 Hz) to --out/traces/run_<seed>.csv");
   app.add_flag("--pullout-bound", pullout_bound,
                "also fly each run's entry descent wings level at alpha_max (the physics bound of the first pull-out)");
@@ -360,11 +373,20 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const auto loaded = reentry::config::load_mission(mission_arg);
+  auto loaded = reentry::config::load_mission(mission_arg);
   if (!loaded.ok) {
     std::fprintf(stderr, "reentry_mc: %s\n", loaded.error.c_str());
     return 2;
   }
+  if (dispersion_set == "stress") {
+    if (!loaded.mission.has_stress_dispersions) {
+      std::fprintf(stderr, "reentry_mc: --dispersions stress: %s has no [stress_dispersions] section\n",
+                   loaded.mission.source_file.c_str());
+      return 2;
+    }
+    loaded.mission.dispersions = loaded.mission.stress_dispersions;  // every draw below uses this set
+  }
+  const std::string set_name = nominal ? "nominal" : dispersion_set;
   std::vector<int> mine;
   for (int r = 0; r < runs; ++r) {
     if (r % shard_k == shard_i) mine.push_back(r);
@@ -384,6 +406,7 @@ int main(int argc, char** argv) {
       const ClosedLoopResult res = reentry::tools::run_closed_loop(loaded.mission, seed + r, !nominal, trace_csv, knows_vehicle);
       records[i] = run_record(r, res);
       records[i]["mission"] = loaded.mission.name;
+      records[i]["dispersions"] = set_name;
       if (knows_vehicle) records[i]["guidance_knows_vehicle"] = true;
       if (pullout_bound) {
         const auto b = reentry::tools::wings_level_pullout_bound(loaded.mission, seed + r, !nominal);

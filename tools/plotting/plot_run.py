@@ -26,6 +26,7 @@ import sys
 import matplotlib
 
 matplotlib.use("Agg")
+import matplotlib.patches  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -256,6 +257,55 @@ def plot_constraints(truth, summary, out_dir, made):
     save(fig, out_dir, "constraints_time.png", made)
 
 
+PHASE_NAMES = ["initial descent", "planned", "heading corridor", "terminal range", "final-reversal window"]
+PHASE_COLORS = ["#eeeeee", "#dde8f5", "#e3f2dd", "#f8ecd6", "#f6dada"]
+
+
+def shade_phases(ax, t, phase):
+    """Background spans coloured by the tracker phase (TRACKER_STATUS.phase)."""
+    p = np.nan_to_num(phase, nan=0).astype(int)
+    start = 0
+    for i in range(1, len(p) + 1):
+        if i == len(p) or p[i] != p[start]:
+            k = min(max(p[start], 0), len(PHASE_COLORS) - 1)
+            ax.axvspan(t[start], t[i - 1], color=PHASE_COLORS[k], lw=0)
+            start = i
+
+
+def plot_tracker_status(tracker, summary, out_dir, made):
+    """The tracker's internals over time, on its phases: drag loop, ratio estimates, heading
+    corridor, terminal range control."""
+    t = tracker["utime"] * 1e-6
+    fig, axes = plt.subplots(4, 1, figsize=(10, 12), sharex=True)
+    for ax in axes:
+        shade_phases(ax, t, tracker["phase"])
+    ax = axes[0]
+    ax.plot(t, tracker["drag_ref_mps2"], "k--", lw=1.2, label="reference D_ref")
+    ax.plot(t, tracker["drag_ref_mps2"] + tracker["drag_err_mps2"], "b-", lw=1.2, label="sensed at the reference alpha")
+    style(ax, "", "drag [m/s²]", "Tracker state (background: phase)")
+    ax = axes[1]
+    ax.plot(t, tracker["drag_ratio"], "b-", lw=1.2, label="K = D sensed / D model")
+    ax.plot(t, tracker["lift_over_drag_ratio"], "g-", lw=1.2, label="L/D sensed / L/D model")
+    style(ax, "", "ratio [-]")
+    ax = axes[2]
+    hw = np.degrees(tracker["corridor_half_width_rad"])
+    ax.plot(t, np.degrees(tracker["heading_err_rad"]), "b-", lw=1.2, label="heading error")
+    ax.plot(t, hw, "r--", lw=1.0, label="corridor half-width")
+    ax.plot(t, -hw, "r--", lw=1.0)
+    style(ax, "", "heading [deg]")
+    ax = axes[3]
+    ax.plot(t, tracker["drag_integral_mps"], "c-", lw=1.2, label="drag integral ∫(D - D_ref) dt")
+    style(ax, "time t [s]", "drag integral [m/s]", legend=False)
+    tw = ax.twinx()
+    tw.plot(t, tracker["terminal_increment_mps2"], "m-", lw=1.2, label="terminal increment c")
+    tw.set_ylabel("terminal increment c [m/s²]")
+    lines = ax.get_lines() + tw.get_lines()
+    ax.legend(lines, [ln.get_label() for ln in lines], fontsize=8, loc="lower left")
+    handles = [matplotlib.patches.Patch(color=c, label=n) for c, n in zip(PHASE_COLORS, PHASE_NAMES)]
+    axes[0].legend(handles=axes[0].get_legend_handles_labels()[0] + handles, fontsize=8, loc="upper left")
+    save(fig, out_dir, "tracker_status.png", made)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run_dir")
@@ -290,6 +340,7 @@ def main():
     truth = read_csv(os.path.join(csv_dir, "TRUTH.csv"))
     cmd = read_csv(os.path.join(csv_dir, "GUIDANCE_CMD.csv"))
     points = read_csv(os.path.join(csv_dir, "PLAN_points.csv"))
+    tracker = read_csv(os.path.join(csv_dir, "TRACKER_STATUS.csv"))
     os.makedirs(out_dir, exist_ok=True)
     made = []
     jobs = [("ground_track", lambda: plot_ground_track(truth, summary, out_dir, made)),
@@ -298,6 +349,14 @@ def main():
             ("bank_alpha", lambda: plot_bank_alpha(truth, cmd, summary, out_dir, made)),
             ("gamma_energy", lambda: plot_gamma_energy(truth, points, summary, out_dir, made)),
             ("constraints_time", lambda: plot_constraints(truth, summary, out_dir, made))]
+    if tracker is not None:
+        try:
+            plot_tracker_status(tracker, summary, out_dir, made)
+        except KeyError as exc:
+            warn(f"tracker_status.png skipped: column {exc} missing")
+            plt.close("all")
+    else:
+        warn(f"no TRACKER_STATUS channel in {csv_dir}: tracker_status.png skipped")
     for name, job in jobs:
         if truth is None:
             warn(f"no TRUTH channel in {csv_dir}: {name}.png skipped")

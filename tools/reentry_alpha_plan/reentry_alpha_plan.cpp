@@ -21,6 +21,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "guidance/mission_adapter.hpp"
 #include "alpha_planner/alpha_planner.hpp"
 #include "reentry/config/mission.hpp"
 
@@ -54,7 +55,7 @@ int main(int argc, char** argv) {
     std::cout << j.dump() << std::endl;
     return 2;
   }
-  reentry::fsw::Status s = g_planner.init(loaded.mission);
+  reentry::fsw::Status s = init_from_mission(g_planner, loaded.mission);
   if (s == reentry::fsw::Status::kOk) s = g_planner.plan(params, g_result);
   j["status"] = reentry::fsw::to_string(s);
   if (s != reentry::fsw::Status::kOk) {

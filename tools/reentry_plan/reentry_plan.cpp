@@ -1,6 +1,7 @@
 // reentry_plan --mission <name|file> [--profile-out plan.csv] [--drag-profile three_segment|smooth]
 //              [--initial-drag actual|lmin]
 // Plans from the mission's entry state (drag from the on-board models) and prints ONE JSON line.
+#include "guidance/mission_adapter.hpp"
 #include "guidance/alpha_profile_source.hpp"
 #include <chrono>
 #include <cmath>
@@ -71,7 +72,7 @@ int main(int argc, char** argv) {
   }
 
   auto planner = std::make_unique<reentry::fsw::EntryPlanner>();  // large fixed arrays: not on the stack
-  const reentry::fsw::Status init_status = planner->init(mission);
+  const reentry::fsw::Status init_status = init_from_mission(*planner, mission);
   if (init_status != reentry::fsw::Status::kOk) {
     std::cerr << "reentry_plan: planner init failed: " << reentry::fsw::to_string(init_status) << '\n';
     return 2;

@@ -216,6 +216,44 @@ class Reader {
 
   bool present() const { return table_ != nullptr; }
 
+  /// Every number of this table not consumed so far, and every entry of the sub-tables named
+  /// in `nested` (as "sub.key"): values that another layer validates. Anything else there
+  /// that is not a finite number is an error here.
+  std::vector<TuningValue> pass_through_numbers(const std::vector<std::string>& nested) {
+    std::vector<TuningValue> out;
+    if (!table_ || sink_->failed()) return out;
+    auto take = [&](const std::string& key, const toml::node& n) {
+      if (!(n.is_integer() || n.is_floating_point())) {
+        fail(key, "expected a number, got " + describe(n));
+        return;
+      }
+      const double v = *n.value<double>();
+      if (!std::isfinite(v)) {
+        fail(key, "value " + fmt_double(v) + " is not finite");
+        return;
+      }
+      out.push_back(TuningValue{key, v, n.is_integer()});
+    };
+    for (const auto& [k, v] : *table_) {
+      const std::string key(k.str());
+      if (used_.count(key)) continue;
+      bool sub = false;
+      for (const auto& name : nested) sub = sub || key == name;
+      if (sub) {
+        used_.insert(key);
+        if (!v.is_table()) {
+          fail(key, "expected a table, got " + describe(v));
+          return out;
+        }
+        for (const auto& [k2, v2] : *v.as_table()) take(key + "." + std::string(k2.str()), v2);
+      } else if (v.is_integer() || v.is_floating_point()) {
+        used_.insert(key);
+        take(key, v);
+      }
+    }
+    return out;
+  }
+
   /// Report the first key that was never consumed (typo or wrong unit suffix).
   void finish() {
     if (!table_ || sink_->failed()) return;
@@ -266,10 +304,27 @@ bool parse_file(const std::string& path, toml::table& out, ErrorSink& sink) {
 
 constexpr double kAlphaLoDeg = -90.0, kAlphaHiDeg = 90.0;
 
+// On-board capacities (fsw/core, fixed-size storage): a file the loader accepts must load on
+// board too, so the loader's limits are these (tests/config/test_onboard_capacity.cpp checks
+// that they equal the flight code's constants). The guidance tunables' limits (rk4_steps, ...)
+// are checked by the flight software's parameter lists (fsw/guidance/mission_adapter).
+constexpr std::size_t kOnboardAeroAlphaRows = 64;      // OnboardAero::kMaxAlpha
+constexpr std::size_t kOnboardAeroMachColumns = 64;    // OnboardAero::kMaxMach
+constexpr std::size_t kOnboardAlphaProfilePoints = 64; // AlphaProfile::kCapacity
+
+void check_capacity(Reader& r, const std::string& key, std::size_t n, std::size_t capacity, const char* holder) {
+  if (n > capacity) {
+    r.fail(key, "has " + std::to_string(n) + " values; the on-board " + holder + " holds at most " +
+                    std::to_string(capacity));
+  }
+}
+
 void read_grid(Reader& r, std::vector<double>& alpha_rad, std::vector<double>& mach) {
   alpha_rad = r.numbers("alpha_deg", true, kAlphaLoDeg, kAlphaHiDeg);
+  check_capacity(r, "alpha_deg", alpha_rad.size(), kOnboardAeroAlphaRows, "aerodynamic table");
   for (double& a : alpha_rad) a *= kDegToRad;
   mach = r.numbers("mach", true, 0.0, 100.0);
+  check_capacity(r, "mach", mach.size(), kOnboardAeroMachColumns, "aerodynamic table");
 }
 
 Table2D read_table(Reader& r, const std::string& key, const std::vector<double>& alpha_rad,
@@ -333,6 +388,10 @@ void read_vehicle_file(const std::string& path, Vehicle& v, ErrorSink& sink) {
   v.mass_kg = vr.number("mass_kg", 0.0, 1e7, true);
   v.reference_area_m2 = vr.number("reference_area_m2", 0.0, 1e4, true);
   v.nose_radius_m = vr.number("nose_radius_m", 0.0, 100.0, true);
+  v.heating_model = vr.choice("heating_model", {"chapman_stagnation", "betts_leading_edge"}, false,
+                              "chapman_stagnation") == "betts_leading_edge"
+                        ? HeatingModel::kBettsLeadingEdge
+                        : HeatingModel::kChapmanStagnation;
   vr.finish();
 
   Reader ar = top.sub("aero");
@@ -374,6 +433,39 @@ void read_vehicle_file(const std::string& path, Vehicle& v, ErrorSink& sink) {
   }
   ar.finish();
   top.finish();
+}
+
+Distribution to_distribution(const std::string& name) {
+  return name == "uniform" ? Distribution::kUniform : Distribution::kGaussian;
+}
+
+// One campaign set: `distribution` for every quantity, `<name>_distribution` overriding it for
+// one; each quantity's number is 3 sigma (gaussian) or the half-width (uniform).
+void read_dispersions(Reader d, Dispersions& dp) {
+  const std::vector<std::string> kinds{"gaussian", "uniform"};
+  const Distribution all = to_distribution(d.choice("distribution", kinds));
+  auto quantity = [&](Dispersion& q, const std::string& name, const std::string& key, double hi, double to_si) {
+    q.value = d.number(key, 0.0, hi) * to_si;
+    q.distribution = d.has(name + "_distribution") ? to_distribution(d.choice(name + "_distribution", kinds)) : all;
+  };
+  quantity(dp.entry_flight_path_rad, "entry_flight_path", "entry_flight_path_deg", 10.0, kDegToRad);
+  quantity(dp.entry_heading_rad, "entry_heading", "entry_heading_deg", 90.0, kDegToRad);
+  quantity(dp.entry_velocity_mps, "entry_velocity", "entry_velocity_mps", 1000.0, 1.0);
+  quantity(dp.entry_position_rad, "entry_position", "entry_position_deg", 10.0, kDegToRad);
+  quantity(dp.density_scale, "density_scale", "density_scale", 0.99, 1.0);
+  dp.density_perturbation = d.number("density_perturbation", 0.0, 0.99);
+  dp.density_correlation_m = d.number("density_correlation_m", 0.0, 1e6, true);
+  quantity(dp.cl_scale, "cl_scale", "cl_scale", 0.99, 1.0);
+  quantity(dp.cd_scale, "cd_scale", "cd_scale", 0.99, 1.0);
+  quantity(dp.mass_scale, "mass_scale", "mass_scale", 0.99, 1.0);
+  dp.wind_scale_min = d.number("wind_scale_min", 0.0, 10.0);
+  dp.wind_scale_max = d.number("wind_scale_max", 0.0, 10.0);
+  dp.wind_scale_distribution =
+      d.has("wind_scale_distribution") ? to_distribution(d.choice("wind_scale_distribution", kinds)) : all;
+  if (!d.sink()->failed() && dp.wind_scale_max < dp.wind_scale_min)
+    d.fail("wind_scale_max", "value " + fmt_double(dp.wind_scale_max) + " below wind_scale_min " +
+                                 fmt_double(dp.wind_scale_min));
+  d.finish();
 }
 
 double specific_energy(double altitude_m, double velocity_mps) {  // (7.8)
@@ -478,6 +570,7 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
     if (ap.has("alpha_deg")) ap.fail("alpha_deg", "not allowed with source = \"planned\" (the profile is planned)");
   } else {
     m.alpha_profile.x = ap.numbers("energy", true, 0.0, 2.0);
+    check_capacity(ap, "energy", m.alpha_profile.x.size(), kOnboardAlphaProfilePoints, "alpha profile");
     m.alpha_profile.y = ap.numbers("alpha_deg", false, 0.0, 90.0);
   }
   for (double& a : m.alpha_profile.y) a *= kDegToRad;
@@ -493,23 +586,21 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
 
   Reader g = top.sub("guidance");
   GuidanceParams& gp = m.guidance;
-  gp.gnc_rate_hz = g.number("gnc_rate_hz", 0.0, 10000.0, true);
-  gp.plan_latency_ticks = g.integer("plan_latency_ticks", 0, 100000);
+  // A guidance cycle between 1 and 100 Hz: slower cannot track a drag profile through the
+  // pull-out, faster leaves no time for the tracker and the link supervision in ticks.
+  gp.gnc_rate_hz = g.number("gnc_rate_hz", 1.0, 100.0);
+  gp.plan_latency_ticks = g.integer("plan_latency_ticks", 1, 1000);  // the executive adopts at k + L, L >= 1
   gp.replan_period_s = g.number("replan_period_s", 0.0, 1e5, true);
   gp.replan_drag_error_frac = g.number("replan_drag_error_frac", 0.0, 10.0, true);
+  gp.drag_error_replan_spacing_s = g.number("drag_error_replan_spacing_s", 0.0, 1e4, false, false, 5.0);
   gp.drag_profile = g.choice("drag_profile", {"three_segment", "smooth"});
   gp.initial_drag = g.choice("initial_drag", {"actual", "lmin"});
   gp.onboard_atmosphere = g.choice("onboard_atmosphere", {"exponential", "table"});
-  gp.rk4_steps = g.integer("rk4_steps", 10, 100000);
-  gp.max_length_iterations = g.integer("max_length_iterations", 1, 1000);
-  gp.downrange_tol_m = g.number("downrange_tol_m", 0.0, 1e6, true);
-  gp.crossrange_tol_m = g.number("crossrange_tol_m", 0.0, 1e6, true);
+  gp.onboard_trim = g.boolean("onboard_trim", false, true);
   gp.initial_descent_drag_mps2 = g.number("initial_descent_drag_mps2", 0.0, 100.0);
-  gp.zeta = g.number("zeta", 0.0, 10.0, true);
-  gp.omega0_radps = g.number("omega0_radps", 0.0, 100.0);
-  gp.k_integral = g.number("k_integral", 0.0, 1e6);
-  gp.k_heading = g.number("k_heading", 0.0, 1e6);
-  gp.k_heading_integral = g.number("k_heading_integral", 0.0, 1e6);
+  // The planner's and tracker's tunables ([guidance] numbers not read above, [guidance.planner],
+  // [guidance.tracker]) are validated by the flight software's parameter lists.
+  gp.tuning = g.pass_through_numbers({"planner", "tracker"});
   g.finish();
 
   Reader s = top.sub("sim");
@@ -529,24 +620,9 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
   sp.time_limit_s = s.number("time_limit_s", 0.0, 1e6, true);
   s.finish();
 
-  Reader d = top.sub("dispersions");
-  Dispersions& dp = m.dispersions;
-  dp.entry_flight_path_rad = d.number("entry_flight_path_deg", 0.0, 10.0) * kDegToRad;
-  dp.entry_heading_rad = d.number("entry_heading_deg", 0.0, 90.0) * kDegToRad;
-  dp.entry_velocity_mps = d.number("entry_velocity_mps", 0.0, 1000.0);
-  dp.entry_position_rad = d.number("entry_position_deg", 0.0, 10.0) * kDegToRad;
-  dp.density_scale = d.number("density_scale", 0.0, 0.99);
-  dp.density_perturbation = d.number("density_perturbation", 0.0, 0.99);
-  dp.density_correlation_m = d.number("density_correlation_m", 0.0, 1e6, true);
-  dp.cl_scale = d.number("cl_scale", 0.0, 0.99);
-  dp.cd_scale = d.number("cd_scale", 0.0, 0.99);
-  dp.mass_scale = d.number("mass_scale", 0.0, 0.99);
-  dp.wind_scale_min = d.number("wind_scale_min", 0.0, 10.0);
-  dp.wind_scale_max = d.number("wind_scale_max", 0.0, 10.0);
-  if (!sink.failed() && dp.wind_scale_max < dp.wind_scale_min)
-    d.fail("wind_scale_max", "value " + fmt_double(dp.wind_scale_max) + " below wind_scale_min " +
-                                 fmt_double(dp.wind_scale_min));
-  d.finish();
+  read_dispersions(top.sub("dispersions"), m.dispersions);
+  m.has_stress_dispersions = top.has("stress_dispersions");
+  if (m.has_stress_dispersions) read_dispersions(top.sub("stress_dispersions"), m.stress_dispersions);
 
   Reader env = top.sub("environment");
   auto env_file = [&](const char* key) {

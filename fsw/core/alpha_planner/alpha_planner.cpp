@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "numerics/root_finding.hpp"
-#include "reentry/config/mission.hpp"
 
 namespace reentry::fsw {
 namespace {
@@ -17,11 +16,10 @@ bool valid_pct(double p) { return std::isfinite(p) && p >= 0.0 && p <= 100.0; }
 
 }  // namespace
 
-Status AlphaPlanner::init(const config::Mission& mission) {
+Status AlphaPlanner::init(const OnboardModels& models, const GuidanceMission& mission) {
   initialised_ = false;
-  const Status s = models_.init(mission);
-  if (s != Status::kOk) return s;
-  const config::PathConstraints& c = mission.constraints;
+  models_ = models;
+  const PathLimits& c = mission.limits;
   if (!(c.alpha_max_rad > 0.0) || !(c.alpha_rate_max_radps > 0.0)) return Status::kInvalidInput;
   if (!(mission.entry.velocity_mps > mission.taem.velocity_mps) || !(mission.taem.velocity_mps > 0.0)) {
     return Status::kInvalidInput;
@@ -143,14 +141,15 @@ Status AlphaPlanner::glide_height(double velocity_mps, const AlphaLaw& law, doub
   return min_height(excess, h_m);
 }
 
-Status AlphaPlanner::heat_flux_height(double velocity_mps, double& h_m) const {
+Status AlphaPlanner::heat_flux_height(double velocity_mps, const AlphaLaw& law, double& h_m) const {
   if (!initialised_ || !(velocity_mps > 0.0)) return Status::kInvalidInput;
   if (!std::isfinite(heat_flux_max_Wpm2_)) {
     h_m = kMinHeight_m;
     return Status::kOk;
   }
-  auto excess = [&](double h) {  // (6.2) in log form: ln q(h) - ln q_max
-    return std::log(models_.heat_flux_Wpm2(models_.atmosphere().density_kgpm3(h), velocity_mps)) -
+  auto excess = [&](double h) {  // (6.2) in log form: ln q(h) - ln q_max (alpha: leading-edge models)
+    const double alpha = alpha_of(law, models_.mach(h, velocity_mps));
+    return std::log(models_.heat_flux_Wpm2(models_.atmosphere().density_kgpm3(h), velocity_mps, alpha)) -
            std::log(heat_flux_max_Wpm2_);
   };
   return min_height(excess, h_m);
@@ -242,18 +241,27 @@ Status AlphaPlanner::plan(const AlphaPlanParams& params, AlphaPlanResult& out) c
       !valid_pct(params.taem_switch_pct) || params.taem_switch_pct < params.heating_switch_pct) {
     return Status::kInvalidInput;
   }
-  constexpr int n = AlphaPlanResult::kGridPoints;
   out.n_corridor = 0;
   out.n_profile = 0;
   out.closed_points = 0;
   out.clamped_points = 0;
   out.violation_points = 0;
+  const AlphaLaw law_ranging{params.ranging_pct / 100.0, -1.0};
+  double h_ranging_m[AlphaPlanResult::kGridPoints] = {};
+  Status s = build_corridor(law_ranging, h_ranging_m, out);  // 1. corridor over V, entry -> TAEM
+  if (s != Status::kOk) return s;
+  phase_switch_velocities(params, law_ranging, out);         // 2-3. intersection velocity, dV (6.12)
+  s = extract_path_alpha(params, h_ranging_m, out);          // 4. path h(V) per phase, alpha (6.6)
+  if (s != Status::kOk) return s;
+  smooth_alpha_monotonic(out);                               // 5. isotonic alpha(V)
+  evaluate_path(out);                                        //    clamped, constraints on the path
+  return sample_profile(out);                                // 6. alpha(E / E_entry)
+}
+
+Status AlphaPlanner::build_corridor(const AlphaLaw& law_ranging, double* h_ranging_m, AlphaPlanResult& out) const {
+  constexpr int n = AlphaPlanResult::kGridPoints;
   const AlphaLaw law_cl{1.0, -1.0};
   const AlphaLaw law_ld{0.0, -1.0};
-  const AlphaLaw law_ranging{params.ranging_pct / 100.0, -1.0};
-
-  // 1. corridor over a fixed velocity grid, entry -> TAEM
-  double h_ranging_m[n] = {};
   for (int i = 0; i < n; ++i) {
     AlphaCorridorPoint& p = out.corridor[i];
     p = AlphaCorridorPoint{};
@@ -262,7 +270,7 @@ Status AlphaPlanner::plan(const AlphaPlanParams& params, AlphaPlanResult& out) c
     Status s = glide_height(v, law_cl, p.h_glide_cl_max_m);
     if (s == Status::kOk) s = glide_height(v, law_ld, p.h_glide_ld_max_m);
     if (s == Status::kOk) s = glide_height(v, law_ranging, h_ranging_m[i]);
-    if (s == Status::kOk) s = heat_flux_height(v, p.h_heat_flux_m);
+    if (s == Status::kOk) s = heat_flux_height(v, law_ld, p.h_heat_flux_m);
     if (s == Status::kOk) s = load_factor_height(v, law_cl, p.h_load_factor_cl_max_m);
     if (s == Status::kOk) s = load_factor_height(v, law_ld, p.h_load_factor_ld_max_m);
     if (s == Status::kOk) s = q_alpha_height(v, law_cl, p.h_q_alpha_cl_max_m);
@@ -278,9 +286,15 @@ Status AlphaPlanner::plan(const AlphaPlanParams& params, AlphaPlanResult& out) c
   }
   out.n_corridor = n;
 
-  // 2. intersection velocity (thesis 6.3.1): below it the heat flux no longer sets the lower
-  //    boundary, i.e. the grid velocity after the last heat-dominated node; the entry velocity
-  //    when the heat flux never dominates.
+  return Status::kOk;
+}
+
+void AlphaPlanner::phase_switch_velocities(const AlphaPlanParams& params, const AlphaLaw& law_ranging,
+                                           AlphaPlanResult& out) const {
+  constexpr int n = AlphaPlanResult::kGridPoints;
+  // Intersection velocity (thesis 6.3.1): below it the heat flux no longer sets the lower
+  // boundary, i.e. the grid velocity after the last heat-dominated node; the entry velocity
+  // when the heat flux never dominates.
   out.v_intersection_mps = v_entry_mps_;
   for (int i = n - 1; i >= 0; --i) {
     const AlphaCorridorPoint& p = out.corridor[i];
@@ -291,8 +305,8 @@ Status AlphaPlanner::plan(const AlphaPlanParams& params, AlphaPlanResult& out) c
     }
   }
 
-  // 3. dV of (6.12): dalpha/dV = alpha_dot_max / (D/m), with dV/dt = -D/m on the alpha(L/D max)
-  //    glide at the TAEM velocity and dalpha the ranging-to-TAEM alpha step there.
+  // dV of (6.12): dalpha/dV = alpha_dot_max / (D/m), with dV/dt = -D/m on the alpha(L/D max)
+  // glide at the TAEM velocity and dalpha the ranging-to-TAEM alpha step there.
   {
     const AlphaCorridorPoint& last = out.corridor[n - 1];
     const double mach = models_.mach(last.h_glide_ld_max_m, v_taem_mps_);
@@ -303,8 +317,13 @@ Status AlphaPlanner::plan(const AlphaPlanParams& params, AlphaPlanResult& out) c
   const double v_end = std::fmin(v_taem_mps_ + out.dv_taem_mps, out.v_intersection_mps);
   out.v_heating_switch_mps = out.v_intersection_mps - params.heating_switch_pct / 100.0 * (out.v_intersection_mps - v_end);
   out.v_taem_switch_mps = out.v_intersection_mps - params.taem_switch_pct / 100.0 * (out.v_intersection_mps - v_end);
+}
 
-  // 4. path h(V) per phase, clipped into the corridor; alpha extraction (6.6)
+Status AlphaPlanner::extract_path_alpha(const AlphaPlanParams& params, const double* h_ranging_m,
+                                        AlphaPlanResult& out) const {
+  constexpr int n = AlphaPlanResult::kGridPoints;
+  const double v_end = std::fmin(v_taem_mps_ + out.dv_taem_mps, out.v_intersection_mps);
+  // Path h(V) per phase, clipped into the corridor; alpha extraction (6.6)
   for (int i = 0; i < n; ++i) {
     AlphaCorridorPoint& p = out.corridor[i];
     const double v = p.velocity_mps;
@@ -332,7 +351,12 @@ Status AlphaPlanner::plan(const AlphaPlanParams& params, AlphaPlanResult& out) c
     if (p.extraction_clamped) ++out.clamped_points;
   }
 
-  // 5. monotonic smoothing: alpha non-increasing as V decreases (pool-adjacent-violators,
+  return Status::kOk;
+}
+
+void AlphaPlanner::smooth_alpha_monotonic(AlphaPlanResult& out) const {
+  constexpr int n = AlphaPlanResult::kGridPoints;
+  // Monotonic smoothing: alpha non-increasing as V decreases (pool-adjacent-violators,
   //    least-squares isotonic fit), then clamped into [alpha_LD(M), alpha_CL(M)] on the path.
   double block_sum[n] = {};
   int block_count[n] = {};
@@ -358,6 +382,10 @@ Status AlphaPlanner::plan(const AlphaPlanParams& params, AlphaPlanResult& out) c
       for (int k = 0; k < block_count[b] && i < n; ++k, ++i) out.corridor[i].alpha_rad = mean;
     }
   }
+}
+
+void AlphaPlanner::evaluate_path(AlphaPlanResult& out) const {
+  constexpr int n = AlphaPlanResult::kGridPoints;
   out.alpha_min_rad = out.corridor[0].alpha_rad;
   out.alpha_max_rad = out.corridor[0].alpha_rad;
   for (int i = 0; i < n; ++i) {
@@ -372,7 +400,7 @@ Status AlphaPlanner::plan(const AlphaPlanParams& params, AlphaPlanResult& out) c
     const double q = 0.5 * rho * p.velocity_mps * p.velocity_mps;
     const double lift = models_.lift_mps2(p.alpha_rad, p.h_path_m, p.velocity_mps);
     const double drag = models_.drag_mps2(p.alpha_rad, p.h_path_m, p.velocity_mps);
-    p.path_heat_flux_Wpm2 = models_.heat_flux_Wpm2(rho, p.velocity_mps);  // (3.6)
+    p.path_heat_flux_Wpm2 = models_.heat_flux_Wpm2(rho, p.velocity_mps, p.alpha_rad);  // (3.6)
     p.path_load_factor_g = std::sqrt(lift * lift + drag * drag) / kG0_mps2;
     p.path_q_alpha_Pa_rad = q * p.alpha_rad;
     p.path_dynamic_pressure_Pa = q;
@@ -388,7 +416,11 @@ Status AlphaPlanner::plan(const AlphaPlanParams& params, AlphaPlanResult& out) c
   out.alpha_entry_rad = out.corridor[0].alpha_rad;
   out.alpha_taem_rad = out.corridor[n - 1].alpha_rad;
 
-  // 6. profile over E/E_entry (x increasing = from TAEM to entry), down-sampled to capacity
+}
+
+Status AlphaPlanner::sample_profile(AlphaPlanResult& out) const {
+  constexpr int n = AlphaPlanResult::kGridPoints;
+  // Profile over E/E_entry (x increasing = from TAEM to entry), down-sampled to capacity
   constexpr int cap = AlphaPlanResult::kProfileCapacity;
   for (int k = 0; k < cap; ++k) {
     const int j = (n - 1) - static_cast<int>(std::lround(static_cast<double>(k) * (n - 1) / (cap - 1)));

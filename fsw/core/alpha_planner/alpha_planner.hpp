@@ -13,11 +13,8 @@
 #pragma once
 
 #include "guidance_types.hpp"
+#include "mission_data.hpp"
 #include "models/onboard_models.hpp"
-
-namespace reentry::config {
-struct Mission;
-}
 
 namespace reentry::fsw {
 
@@ -26,12 +23,9 @@ namespace reentry::fsw {
 /// ranging 50 %, heating->ranging switch at the intersection velocity (0 %), ranging->TAEM
 /// switch at 80 % of [V_intersection, V_taem + dV]. The TAEM-matching phase is a ramp: the
 /// path height blends linearly in V from the ranging path at the switch to the alpha(L/D max)
-/// glide at V_taem + dV ((6.12) gives the least dV the alpha rate allows; a step there left
-/// the X-33 at 32 deg instead of 21 deg at TAEM, 2.6 km high). Dispersed X-33 runs with the
-/// planned profile, successes of 100 (seed 7 / seed 1000): step at 100 %: 1 / -; ramp from
-/// 95 %: 21 / -; 90 %: 67 / 62; 85 %: 50 / -; 80 %: 63 / 65; 65 %: 62 / 58; 50 %: 62 / -;
-/// 35 %: 59 / -; 20 %: 56 / -. 80 % (V = 2280 m/s for the X-33) is the best away from the
-/// late-switch cliff.
+/// glide at V_taem + dV ((6.12) gives the least dV the alpha rate allows; an alpha step there
+/// outruns the rate limit and leaves the vehicle high at TAEM). The campaign behind the 80 %
+/// switch is in docs/guidance_design.md (alpha planning).
 struct AlphaPlanParams {
   double heating_pct = 30.0;         // heating phase: 0 % = lower boundary (heat flux), 100 % = alpha(CL max) glide
   double ranging_pct = 50.0;         // ranging phase: alpha = alpha(L/D max) + pct (alpha(CL max) - alpha(L/D max))
@@ -105,7 +99,8 @@ class AlphaPlanner {
   static constexpr double kMaxHeight_m = 150000.0;
   static constexpr int kAlphaScanPoints = 241;
 
-  Status init(const config::Mission& mission);
+  /// The models are copied.
+  Status init(const OnboardModels& models, const GuidanceMission& mission);
   Status plan(const AlphaPlanParams& params, AlphaPlanResult& out) const;
 
   // ---- building blocks (public for tests and tools) --------------------------------------
@@ -122,7 +117,9 @@ class AlphaPlanner {
   double alpha_of(const AlphaLaw& law, double mach) const;
 
   Status glide_height(double velocity_mps, const AlphaLaw& law, double& h_m) const;        // (6.6)
-  Status heat_flux_height(double velocity_mps, double& h_m) const;                          // (6.2)
+  /// law: the alpha where the heat flux depends on it (leading-edge model); the corridor uses
+  /// the alpha(L/D max) law, as for its other lower-boundary constraints.
+  Status heat_flux_height(double velocity_mps, const AlphaLaw& law, double& h_m) const;      // (6.2)
   Status load_factor_height(double velocity_mps, const AlphaLaw& law, double& h_m) const;   // (6.7)
   Status q_alpha_height(double velocity_mps, const AlphaLaw& law, double& h_m) const;       // (6.8)
   Status dynamic_pressure_height(double velocity_mps, double& h_m) const;                   // (6.5)
@@ -136,6 +133,13 @@ class AlphaPlanner {
  private:
   template <class F>
   Status min_height(F&& excess, double& h_m) const;
+  // The steps of plan().
+  Status build_corridor(const AlphaLaw& law_ranging, double* h_ranging_m, AlphaPlanResult& out) const;
+  void phase_switch_velocities(const AlphaPlanParams& params, const AlphaLaw& law_ranging, AlphaPlanResult& out) const;
+  Status extract_path_alpha(const AlphaPlanParams& params, const double* h_ranging_m, AlphaPlanResult& out) const;
+  void smooth_alpha_monotonic(AlphaPlanResult& out) const;
+  void evaluate_path(AlphaPlanResult& out) const;
+  Status sample_profile(AlphaPlanResult& out) const;
 
   OnboardModels models_;
   double alpha_max_rad_ = 0.0;

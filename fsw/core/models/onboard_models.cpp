@@ -1,11 +1,7 @@
 #include "models/onboard_models.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <cstring>
-#include <string>
-
-#include <reentry/config/mission.hpp>
 
 #include "numerics/table_lookup.hpp"
 
@@ -76,26 +72,20 @@ Status OnboardAtmosphere::init_exponential() {
   return Status::kOk;
 }
 
-Status OnboardAtmosphere::init_table(const char* path) {
-  std::FILE* f = std::fopen(path, "r");
-  if (f == nullptr) return Status::kInvalidInput;
-  char line[256];
-  int n = 0;
-  Status status = Status::kOk;
-  for (int guard = 0; guard < 100000 && std::fgets(line, sizeof line, f) != nullptr; ++guard) {
-    if (line[0] == '%' || line[0] == '#') continue;
-    double h = 0.0, rho = 0.0, p = 0.0, t = 0.0;
-    if (std::sscanf(line, "%lf %lf %lf %lf", &h, &rho, &p, &t) != 4) continue;
-    if (n >= kCapacity) { status = Status::kCapacityExceeded; break; }
-    if (!(rho > 0.0) || !(t > 0.0) || (n > 0 && !(h > h_m_[n - 1]))) { status = Status::kInvalidInput; break; }
-    h_m_[n] = h;
-    ln_rho_[n] = std::log(rho);
-    temperature_K_[n] = t;
-    ++n;
-  }
-  std::fclose(f);
-  if (status != Status::kOk) return status;
+Status OnboardAtmosphere::init_table(const double* altitude_m, const double* density_kgpm3,
+                                     const double* temperature_K, int n) {
+  if (n > kCapacity) return Status::kCapacityExceeded;
   if (n < 2) return Status::kInvalidInput;
+  for (int i = 0; i < n; ++i) {
+    const double h = altitude_m[i], rho = density_kgpm3[i], t = temperature_K[i];
+    if (!std::isfinite(h) || !(rho > 0.0) || !(t > 0.0) || !std::isfinite(rho) || !std::isfinite(t) ||
+        (i > 0 && !(h > h_m_[i - 1]))) {
+      return Status::kInvalidInput;
+    }
+    h_m_[i] = h;
+    ln_rho_[i] = std::log(rho);
+    temperature_K_[i] = t;
+  }
   n_ = n;
   kind_ = AtmosphereKind::kTable;
   return Status::kOk;
@@ -149,14 +139,12 @@ Status OnboardAero::init(const double* alpha_rad, int n_alpha, const double* mac
   return Status::kOk;
 }
 
-Status OnboardAero::init(const config::AeroModel& aero) {
-  const int na = static_cast<int>(aero.cl.alpha_rad.size());
-  const int nm = static_cast<int>(aero.cl.mach.size());
-  if (aero.cd.alpha_rad != aero.cl.alpha_rad || aero.cd.mach != aero.cl.mach) return Status::kInvalidInput;
-  if (static_cast<int>(aero.cl.values.size()) != na * nm || static_cast<int>(aero.cd.values.size()) != na * nm) {
-    return Status::kInvalidInput;
-  }
-  return init(aero.cl.alpha_rad.data(), na, aero.cl.mach.data(), nm, aero.cl.values.data(), aero.cd.values.data());
+Status OnboardAero::init_trimmed(const TrimAeroData& data) {
+  double cl[TrimSurfaceData::kMaxNodes];
+  double cd[TrimSurfaceData::kMaxNodes];
+  const Status s = solve_trimmed_coefficients(data, cl, cd);
+  if (s != Status::kOk) return s;
+  return init(data.alpha_rad, data.n_alpha, data.mach, data.n_mach, cl, cd);
 }
 
 double OnboardAero::interpolate(const double* table, double alpha_rad, double mach) const {
@@ -184,55 +172,59 @@ Status AlphaProfile::init(const double* e_norm, const double* alpha_rad, int n) 
   return Status::kOk;
 }
 
-Status AlphaProfile::init(const config::Table1D& profile) {
-  if (profile.x.size() != profile.y.size()) return Status::kInvalidInput;
-  return init(profile.x.data(), profile.y.data(), static_cast<int>(profile.x.size()));
-}
-
 double AlphaProfile::alpha_rad(double e_norm) const {
   return numerics::linear(x_, alpha_rad_, n_, e_norm);  // clamped
 }
 
 // ---------------------------------------------------------------- aggregate
-void OnboardModels::set_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m) {
+void OnboardModels::set_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m, HeatFluxModel heating) {
   mass_kg_ = mass_kg;
   area_over_mass_m2pkg_ = reference_area_m2 / mass_kg;
   nose_radius_m_ = nose_radius_m;
-  // C of (3.6) from (3.5): c1 / (sqrt(RN) sqrt(rho0) Vc^c2), Vc = sqrt(mu / R).
-  const double vc = std::sqrt(kMuEarth_m3ps2 / kEarthRadius_m);
-  heat_constant_ = kHeatC1 / (std::sqrt(nose_radius_m_) * std::sqrt(OnboardAtmosphere::kRho0_kgpm3) * std::pow(vc, kHeatC2));
+  heating_ = heating;
+  if (heating == HeatFluxModel::kBettsLeadingEdge) {
+    // Betts's fit q[BTU/(ft^2 s)] = qa(alpha) 17700 sqrt(rho[slug/ft^3]) (1e-4 v[ft/s])^3.07 with
+    // the unit conversions folded into K: q[W/m^2] = qa(alpha) K sqrt(rho[kg/m^3]) V[m/s]^3.07.
+    constexpr double kFoot_m = 0.3048;
+    constexpr double kSlug_kg = 14.59390293720636;
+    constexpr double kBtu_J = 1055.05585262;
+    const double btu_per_ft2s_in_Wpm2 = kBtu_J / (kFoot_m * kFoot_m);
+    const double slug_per_ft3_in_kgpm3 = kSlug_kg / (kFoot_m * kFoot_m * kFoot_m);
+    heat_exponent_ = kBettsHeatC2;
+    heat_constant_ = btu_per_ft2s_in_Wpm2 * 17700.0 / std::sqrt(slug_per_ft3_in_kgpm3) *
+                     std::pow(1e-4 / kFoot_m, kBettsHeatC2);
+  } else {
+    // C of (3.6) from (3.5): c1 / (sqrt(RN) sqrt(rho0) Vc^c2), Vc = sqrt(mu / R).
+    const double vc = std::sqrt(kMuEarth_m3ps2 / kEarthRadius_m);
+    heat_exponent_ = kHeatC2;
+    heat_constant_ =
+        kHeatC1 / (std::sqrt(nose_radius_m_) * std::sqrt(OnboardAtmosphere::kRho0_kgpm3) * std::pow(vc, kHeatC2));
+  }
 }
 
-Status OnboardModels::init(const config::Mission& mission) {
-  const config::Vehicle& v = mission.vehicle;
-  if (!(v.mass_kg > 0.0) || !(v.reference_area_m2 > 0.0) || !(v.nose_radius_m > 0.0)) return Status::kInvalidInput;
-  set_vehicle(v.mass_kg, v.reference_area_m2, v.nose_radius_m);
-  Status s = aero_.init(v.aero);
-  if (s != Status::kOk) return s;
-  if (mission.guidance.onboard_atmosphere == "table") {
-    std::string path = mission.environment.us76_table;
-    if (!path.empty() && path[0] != '/' && !mission.source_file.empty()) {
-      const auto slash = mission.source_file.find_last_of('/');
-      if (slash != std::string::npos) path = mission.source_file.substr(0, slash + 1) + path;
-    }
-    return atmosphere_.init_table(path.c_str());
+Status OnboardModels::init_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m,
+                                   HeatFluxModel heating) {
+  if (!(mass_kg > 0.0) || !(reference_area_m2 > 0.0) || !(nose_radius_m > 0.0) || !std::isfinite(mass_kg) ||
+      !std::isfinite(reference_area_m2) || !std::isfinite(nose_radius_m)) {
+    return Status::kInvalidInput;
   }
-  return atmosphere_.init_exponential();
+  set_vehicle(mass_kg, reference_area_m2, nose_radius_m, heating);
+  return Status::kOk;
 }
 
 double OnboardModels::mach(double altitude_m, double velocity_mps) const {
   return velocity_mps / atmosphere_.speed_of_sound_mps(altitude_m);
 }
 
-bool has_mach_band(const config::TaemInterface& taem) {
-  return taem.mach_target > 0.0 && taem.mach_tol > 0.0 && taem.mach_tol < config::kNotConstrained;
+bool has_mach_band(const TaemTarget& taem) {
+  return taem.mach_target > 0.0 && taem.mach_tol > 0.0 && taem.mach_tol < kUnconstrained;
 }
 
-double OnboardModels::taem_altitude_depth(const config::TaemInterface& taem, double altitude_m) {
+double OnboardModels::taem_altitude_depth(const TaemTarget& taem, double altitude_m) {
   return 1.0 - std::fabs(altitude_m - taem.altitude_m) / taem.altitude_tol_m;
 }
 
-double OnboardModels::taem_band_depth(const config::TaemInterface& taem, double taem_energy_Jpkg,
+double OnboardModels::taem_band_depth(const TaemTarget& taem, double taem_energy_Jpkg,
                                       double altitude_m) const {
   double depth = taem_altitude_depth(taem, altitude_m);
   if (has_mach_band(taem)) {
@@ -275,8 +267,17 @@ double OnboardModels::dlnrho_dr_fd(double altitude_m, double step_m) const {
          (2.0 * step_m);
 }
 
-double OnboardModels::heat_flux_Wpm2(double density_kgpm3, double velocity_mps) const {
-  return heat_constant_ * std::sqrt(density_kgpm3) * std::pow(velocity_mps, kHeatC2);  // (3.6)
+double OnboardModels::heat_flux_coefficient(double alpha_rad) const {
+  if (heating_ == HeatFluxModel::kChapmanStagnation) return heat_constant_;  // (3.6)
+  // Betts's alpha factor qa, alpha in degrees as published (Betts 2010, 6.1).
+  constexpr double kDegPerRad = 57.29577951308232;
+  const double a = alpha_rad * kDegPerRad;
+  const double qa = ((-1.0117249e-6 * a + 2.1286289e-4) * a - 1.9213774e-2) * a + 1.0672181;
+  return qa * heat_constant_;
+}
+
+double OnboardModels::heat_flux_Wpm2(double density_kgpm3, double velocity_mps, double alpha_rad) const {
+  return heat_flux_coefficient(alpha_rad) * std::sqrt(density_kgpm3) * std::pow(velocity_mps, heat_exponent_);  // (3.6)
 }
 
 }  // namespace reentry::fsw

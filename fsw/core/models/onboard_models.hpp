@@ -2,18 +2,14 @@
 //
 // Simpler than the truth models on purpose (DESIGN §5): central gravity, exponential or
 // tabulated atmosphere, the vehicle's basic aero tables. All data is copied into
-// fixed-capacity arrays by init(); after that nothing allocates and nothing does I/O.
-// Independent code from sim_truth.
+// fixed-capacity arrays at initialisation (the process layer reads the files and hands the
+// arrays over); after that nothing allocates and nothing does I/O. Independent code from
+// sim_truth.
 #pragma once
 
 #include "guidance_types.hpp"
-
-namespace reentry::config {
-struct Mission;
-struct TaemInterface;
-struct AeroModel;
-struct Table1D;
-}  // namespace reentry::config
+#include "mission_data.hpp"
+#include "models/onboard_trim.hpp"
 
 namespace reentry::fsw {
 
@@ -42,7 +38,7 @@ double level_flight_lift_need_mps2(double radius_m, double horizontal_speed_mps,
 double specific_energy_Jpkg(double radius_m, double velocity_mps);
 
 /// The mission gives a Mach band at TAEM (target and a finite tolerance).
-bool has_mach_band(const config::TaemInterface& taem);
+bool has_mach_band(const TaemTarget& taem);
 
 /// V from (E, r) through (7.8); returns a negative value when the energy is too low
 /// for the radius (V^2 < 0), so callers can detect an impossible point.
@@ -54,16 +50,17 @@ double radius_for_speed_m(double energy_Jpkg, double velocity_mps);
 enum class AtmosphereKind { kExponential, kTable };
 
 /// rho(h), d(ln rho)/dr and speed of sound. Exponential: rho0 = 1.225, beta = 1/7050 (7.15);
-/// table: ln(rho) and T linear in altitude between rows of a US76 file read at init.
+/// table: ln(rho) and T linear in altitude between the rows of a US76 table.
 class OnboardAtmosphere {
  public:
   static constexpr int kCapacity = 2048;
   static constexpr double kRho0_kgpm3 = 1.225;
   static constexpr double kBeta_pm = 1.0 / 7050.0;
+  static constexpr double kScaleHeight_m = 7050.0;  // 1 / beta (2.20): the gain rule's and the TAEM altitude's H
 
   Status init_exponential();
-  /// Reads "altitude_m density pressure temperature" rows ('%' comments). I/O at init only.
-  Status init_table(const char* path);
+  /// Rows of geometric altitude (strictly increasing), density (> 0) and temperature (> 0).
+  Status init_table(const double* altitude_m, const double* density_kgpm3, const double* temperature_K, int n);
 
   double density_kgpm3(double altitude_m) const;
   double dlnrho_dr_pm(double altitude_m) const;   // (1/rho) d rho / dr
@@ -81,14 +78,16 @@ class OnboardAtmosphere {
   double temperature_K_[kCapacity] = {};
 };
 
-/// Basic (untrimmed) CL and CD over (alpha, Mach), bilinear, clamped at the table edges.
+/// CL and CD over (alpha, Mach), bilinear, clamped at the table edges: the basic tables, or
+/// the trimmed ones solved at start-up (onboard_trim.hpp).
 class OnboardAero {
  public:
   static constexpr int kMaxAlpha = 64;
   static constexpr int kMaxMach = 64;
 
-  Status init(const config::AeroModel& aero);
-  /// Direct initialisation from arrays (row-major, values[i_alpha * n_mach + i_mach]).
+  /// Trimmed C_L, C_D on the data's grid (solve_trimmed_coefficients). Start-up only.
+  Status init_trimmed(const TrimAeroData& data);
+  /// Tables over (alpha, Mach), row-major: values[i_alpha * n_mach + i_mach].
   Status init(const double* alpha_rad, int n_alpha, const double* mach, int n_mach,
               const double* cl, const double* cd);
   void coefficients(double alpha_rad, double mach, double& cl, double& cd) const;
@@ -119,7 +118,6 @@ class OnboardAero {
 class AlphaProfile {
  public:
   static constexpr int kCapacity = 64;
-  Status init(const config::Table1D& profile);
   Status init(const double* e_norm, const double* alpha_rad, int n);
   double alpha_rad(double e_norm) const;
 
@@ -129,17 +127,31 @@ class AlphaProfile {
   double alpha_rad_[kCapacity] = {};
 };
 
+/// Heat-flux model of the constrained point, q = C(alpha) sqrt(rho) V^c2 in both cases.
+enum class HeatFluxModel {
+  kChapmanStagnation,  // (3.5)/(3.6): C = c1 / (sqrt(RN) sqrt(rho0) Vc^c2), c2 = 3
+  kBettsLeadingEdge,   // Betts 2010 (6.1) Shuttle wing leading edge: C = qa(alpha) K, c2 = 3.07
+};
+
 /// Everything the planner needs about the vehicle and its environment.
 class OnboardModels {
  public:
-  Status init(const config::Mission& mission);
+  /// Vehicle mass, reference area and nose radius (all > 0); the atmosphere and the aero
+  /// tables are initialised through atmosphere() and aero().
+  Status init_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m,
+                      HeatFluxModel heating = HeatFluxModel::kChapmanStagnation);
 
   const OnboardAtmosphere& atmosphere() const { return atmosphere_; }
   const OnboardAero& aero() const { return aero_; }
   OnboardAtmosphere& atmosphere() { return atmosphere_; }
   OnboardAero& aero() { return aero_; }
 
-  void set_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m);
+  /// Mass, area and the heat-flux model (nose_radius_m is used by kChapmanStagnation only).
+  void set_vehicle(double mass_kg, double reference_area_m2, double nose_radius_m,
+                   HeatFluxModel heating = HeatFluxModel::kChapmanStagnation);
+  /// The aero tables are the start-up trim solution (moment and surface data, guidance.onboard_trim).
+  bool aero_trimmed() const { return aero_trimmed_; }
+  void set_aero_trimmed(bool trimmed) { aero_trimmed_ = trimmed; }
   double mass_kg() const { return mass_kg_; }
   double area_over_mass() const { return area_over_mass_m2pkg_; }
 
@@ -148,12 +160,12 @@ class OnboardModels {
   /// bands: min over {altitude, Mach} of 1 - |x - x_target| / tol (1: on target, 0: on an
   /// edge, < 0: outside); the altitude band alone when no Mach band is given (has_mach_band).
   /// Needs altitude_tol_m > 0.
-  double taem_band_depth(const config::TaemInterface& taem, double taem_energy_Jpkg, double altitude_m) const;
+  double taem_band_depth(const TaemTarget& taem, double taem_energy_Jpkg, double altitude_m) const;
   /// Speed at the TAEM energy at a height above the ellipsoid over the aim point (the energy
   /// (7.8) is taken at the radius surface_radius_m(aim latitude) + height).
   static double taem_speed_mps(double aim_latitude_rad, double taem_energy_Jpkg, double altitude_m);
   /// The altitude term of taem_band_depth alone. Needs altitude_tol_m > 0.
-  static double taem_altitude_depth(const config::TaemInterface& taem, double altitude_m);
+  static double taem_altitude_depth(const TaemTarget& taem, double altitude_m);
   /// Drag acceleration D = rho V^2 CD S / (2 m)  (D.1).
   double drag_mps2(double alpha_rad, double altitude_m, double velocity_mps) const;
   double lift_mps2(double alpha_rad, double altitude_m, double velocity_mps) const;
@@ -164,11 +176,16 @@ class OnboardModels {
                                 double energy_b_Jpkg, double altitude_b_m) const;
   /// (1/rho) d rho / dr by a central difference of ln rho over +-step_m (7.14-7.16).
   double dlnrho_dr_fd(double altitude_m, double step_m) const;
-  /// Convective stagnation heat flux (3.5): c1/sqrt(RN) sqrt(rho/rho0) (V/Vc)^c2.
-  double heat_flux_Wpm2(double density_kgpm3, double velocity_mps) const;
-  /// C of (3.6): q = C sqrt(rho) V^c2.
-  double heat_flux_constant() const { return heat_constant_; }
-  static constexpr double kHeatC1 = 1.06584e8;
+  /// Heat flux of the vehicle's model, q = C(alpha) sqrt(rho) V^c2: Chapman stagnation point
+  /// (3.5)/(3.6), c1/sqrt(RN) sqrt(rho/rho0) (V/Vc)^3, alpha-free; or Betts's leading edge.
+  double heat_flux_Wpm2(double density_kgpm3, double velocity_mps, double alpha_rad) const;
+  /// C(alpha) of q = C sqrt(rho) V^c2, SI (W/m^2 per sqrt(kg/m^3) (m/s)^c2).
+  double heat_flux_coefficient(double alpha_rad) const;
+  /// c2 of q = C sqrt(rho) V^c2.
+  double heat_flux_velocity_exponent() const { return heat_exponent_; }
+  HeatFluxModel heat_flux_model() const { return heating_; }
+  static constexpr double kHeatC1 = 1.06584e8;  // (3.5), W/m^(3/2)
+  static constexpr double kBettsHeatC2 = 3.07;  // Betts 2010, 6.1
   static constexpr double kHeatC2 = 3.0;
 
  private:
@@ -177,7 +194,10 @@ class OnboardModels {
   double mass_kg_ = 1.0;
   double area_over_mass_m2pkg_ = 0.0;
   double nose_radius_m_ = 1.0;
-  double heat_constant_ = 0.0;
+  HeatFluxModel heating_ = HeatFluxModel::kChapmanStagnation;
+  double heat_constant_ = 0.0;  // Chapman: C; Betts: K, C = qa(alpha) K
+  double heat_exponent_ = kHeatC2;
+  bool aero_trimmed_ = false;
 };
 
 }  // namespace reentry::fsw

@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include <reentry/config/mission.hpp>
-
 #include "numerics/root_finding.hpp"
 #include "planner/drag_derivatives.hpp"
 #include "planner/mission_geometry.hpp"
@@ -11,24 +9,14 @@
 namespace reentry::fsw {
 namespace {
 
+// Numerical settings of the planner's root finders (not tunables of the method): brackets of
+// the equilibrium-glide height and of the profile level Dc (7.12), the finite-difference step
+// of d ln rho / dr and the iteration bound.
 constexpr double kMaxAltitude_m = 200000.0;
-constexpr double kDragFloor_mps2 = 1e-4;
-constexpr double kGradedGridDrag_mps2 = 0.1;   // below this initial drag the energy grid is graded
-constexpr double kMaxClosedFraction = 0.1;     // of the grid: a longer corridor closure is a failure
-constexpr double kLateralMoveSpanFraction = 0.9;  // ranging alpha for lateral reach: above this energy only
-constexpr double kMinLevel_mps2 = 1e-3;   // bracket of the profile level Dc (7.12)
-constexpr double kMaxLevel_mps2 = 500.0;  // far above any corridor maximum: clipped to it
-constexpr double kDensityStep_m = 25.0;        // finite-difference step for d ln rho / dr
+constexpr double kMinLevel_mps2 = 1e-3;
+constexpr double kMaxLevel_mps2 = 500.0;   // far above any corridor maximum: clipped to it
+constexpr double kDensityStep_m = 25.0;
 constexpr int kRootIterations = 80;
-constexpr int kTaemBoxSamples = 60;            // altitude samples of the TAEM band (start-up only)
-constexpr double kBestEffortCrossrangeFraction = 0.05;  // of the range to go (see reversal_search)
-constexpr double kCaptureSpanFraction = 0.1;   // profile start (capture) exempt from the floor check
-constexpr double kRangingRampFraction = 0.05;  // alpha blend ramps over this fraction of the span
-constexpr int kRangingBisections = 6;          // blend resolution 1/64
-constexpr double kRangingBlendTol = 1.0 / 64.0;
-constexpr int kAlphaScanSteps = 200;           // alpha(L/D max) scan over [0, alpha_max]
-constexpr double kMinLiftScale = 0.5;          // accepted range of the in-flight L/D estimate
-constexpr double kMaxLiftScale = 1.5;
 
 bool finite_state(const RelativeState& s) {
   return std::isfinite(s.radius_m) && std::isfinite(s.latitude_rad) && std::isfinite(s.longitude_rad) &&
@@ -38,40 +26,31 @@ bool finite_state(const RelativeState& s) {
 
 }  // namespace
 
-Status EntryPlanner::init(const config::Mission& mission) {
+Status EntryPlanner::init(const OnboardModels& models, const AlphaProfile& alpha_profile,
+                          const GuidanceMission& mission, const GuidanceLawParams& params) {
   initialised_ = false;
-  Status s = models_.init(mission);
-  if (s != Status::kOk) return s;
-  s = alpha_profile_.init(mission.alpha_profile);
-  if (s != Status::kOk) return s;
-  const config::GuidanceParams& g = mission.guidance;
-  if (g.drag_profile == "three_segment") profile_kind_ = DragProfileKind::kThreeSegment;
-  else if (g.drag_profile == "smooth") profile_kind_ = DragProfileKind::kSmooth;
-  else return Status::kInvalidInput;
-  if (g.initial_drag == "actual") initial_drag_ = InitialDrag::kActual;
-  else if (g.initial_drag == "lmin") initial_drag_ = InitialDrag::kLmin;
-  else return Status::kInvalidInput;
-  if (g.rk4_steps < 10 || g.rk4_steps > kMaxRkSteps || g.max_length_iterations < 1 || g.max_length_iterations > 1000 ||
-      !(g.downrange_tol_m > 0.0) || !(g.crossrange_tol_m > 0.0)) {
+  models_ = models;
+  alpha_profile_ = alpha_profile;
+  params_ = params.planner;
+  if (params_.rk4_steps < 10 || params_.rk4_steps > kMaxRkSteps || params_.max_length_iterations < 1 ||
+      params_.max_length_iterations > 1000 || !(params_.downrange_tol_m > 0.0) || !(params_.crossrange_tol_m > 0.0)) {
     return Status::kInvalidInput;
   }
-  rk4_steps_ = g.rk4_steps;
-  max_iterations_ = g.max_length_iterations;
-  downrange_tol_m_ = g.downrange_tol_m;
-  crossrange_tol_m_ = g.crossrange_tol_m;
+  terminal_span_fraction_ = params.terminal_span_fraction;
 
-  const config::PathConstraints& c = mission.constraints;
+  const PathLimits& c = mission.limits;
   // The corridor is planned with a design margin on every path constraint: the tracker's
   // transients at drag capture and the on-board/true aerodynamics differences (trim) must fit.
-  heat_max_ = kConstraintMargin * c.heat_flux_max_Wpm2;
-  q_alpha_max_ = kConstraintMargin * c.q_alpha_max_Pa_rad;
+  const double margin = params.constraint_margin;
+  heat_max_ = margin * c.heat_flux_max_Wpm2;
+  q_alpha_max_ = margin * c.q_alpha_max_Pa_rad;
   alpha_max_ = c.alpha_max_rad;
-  n_max_ = kConstraintMargin * c.load_factor_max_g * kG0_mps2;
-  q_max_ = kConstraintMargin * c.dynamic_pressure_max_Pa;
+  n_max_ = margin * c.load_factor_max_g * kG0_mps2;
+  q_max_ = margin * c.dynamic_pressure_max_Pa;
   sigma_rate_max_ = c.sigma_rate_max_radps;
   if (!(sigma_rate_max_ > 0.0)) return Status::kInvalidInput;
 
-  const config::SphericalState& e = mission.entry;
+  const EntryInterface& e = mission.entry;
   entry_ = RelativeState{};
   entry_.radius_m = kEarthRadius_m + e.altitude_m;
   entry_.altitude_m = e.altitude_m;
@@ -86,37 +65,37 @@ Status EntryPlanner::init(const config::Mission& mission) {
   entry_.drag_mps2 = models_.drag_mps2(alpha_entry, e.altitude_m, e.velocity_mps);
   entry_.lift_mps2 = models_.lift_mps2(alpha_entry, e.altitude_m, e.velocity_mps);
 
-  const config::TaemInterface& t = mission.taem;
+  const TaemTarget& t = mission.taem;
   taem_radius_ = surface_radius_m(t.latitude_rad) + t.altitude_m;
   taem_velocity_ = t.velocity_mps;
   taem_lat_ = t.latitude_rad;
   taem_lon_ = t.longitude_rad;
   taem_energy_ = specific_energy_Jpkg(taem_radius_, taem_velocity_);
-  taem_drag_altitude_m_ = taem_box_altitude(mission);
-  e_corridor_ = taem_energy_ + kLateralCorridorSpanFraction * (entry_energy_ - taem_energy_);
+  taem_drag_altitude_m_ = taem_box_altitude(t);
+  e_corridor_ = taem_energy_ + params.lateral_corridor_span_fraction * (entry_energy_ - taem_energy_);
   if (!(entry_energy_ > taem_energy_) || !(taem_energy_ > 0.0) || !std::isfinite(entry_.drag_mps2)) {
     return Status::kInvalidInput;
   }
   ranging_blend_min_ = 0.0;
+  flown_side_known_ = false;
   initialised_ = true;
   return Status::kOk;
 }
 
 RelativeState EntryPlanner::entry_state() const { return entry_; }
 
-double EntryPlanner::taem_box_altitude(const config::Mission& mission) const {
+double EntryPlanner::taem_box_altitude(const TaemTarget& t) const {
   // Final drag of the profile: the vehicle meets the TAEM energy where the drag equals it, so
   // that drag sets the TAEM altitude (and, the energy being fixed, the speed and Mach). Rule:
   // of the altitudes in the TAEM altitude band, take the one whose state at the TAEM energy
   // lies deepest inside both bands, min over {altitude, Mach} of the normalised distance to
   // the band edge, among the altitudes where q and q*alpha at the TAEM alpha are within their
   // limits (the mission altitude itself when no Mach band is given).
-  const config::TaemInterface& t = mission.taem;
   if (!has_mach_band(t) || !(t.altitude_tol_m > 0.0)) return t.altitude_m;
   double best_h = t.altitude_m, best_depth = -1e300;
   const double alpha_taem = alpha_profile_.alpha_rad(taem_energy_ / entry_energy_);
-  for (int i = 0; i <= kTaemBoxSamples; ++i) {
-    const double h = t.altitude_m + t.altitude_tol_m * (2.0 * i / kTaemBoxSamples - 1.0);
+  for (int i = 0; i <= params_.taem_box_samples; ++i) {
+    const double h = t.altitude_m + t.altitude_tol_m * (2.0 * i / params_.taem_box_samples - 1.0);
     const double v = OnboardModels::taem_speed_mps(t.latitude_rad, taem_energy_, h);
     if (!(v > 0.0)) continue;
     // The TAEM state must itself satisfy the dynamic-pressure constraints at the TAEM alpha.
@@ -173,8 +152,7 @@ Status EntryPlanner::equilibrium_glide_radius() {
 
 void EntryPlanner::corridor() {
   const double s_over_m = models_.area_over_mass();
-  const double c_heat = models_.heat_flux_constant();
-  const double two_c2m2 = 2.0 * (OnboardModels::kHeatC2 - 1.0);
+  const double two_c2m2 = 2.0 * (models_.heat_flux_velocity_exponent() - 1.0);
   const double span = e0_ - taem_energy_;
   for (int k = 0; k < kGrid; ++k) {
     const double r = r_[k];
@@ -184,8 +162,9 @@ void EntryPlanner::corridor() {
     double cl, cd;
     models_.aero().coefficients(alpha_[k], models_.mach(h, v), cl, cd);
     const double alpha = alpha_[k];
+    const double c_heat = models_.heat_flux_coefficient(alpha);  // q = C(alpha) sqrt(rho) V^c2
     d_heat_[k] = (heat_max_ * heat_max_ * cd * s_over_m) / (2.0 * c_heat * c_heat * std::pow(v, two_c2m2));  // (7.3)
-    d_qalpha_[k] = alpha > 1e-6 ? q_alpha_max_ * cd * s_over_m / alpha : config::kNotConstrained;         // (7.4)
+    d_qalpha_[k] = alpha > 1e-6 ? q_alpha_max_ * cd * s_over_m / alpha : kUnconstrained;         // (7.4)
     const double d_load = n_max_ / (cl / cd * std::cos(alpha) + std::sin(alpha));                           // (7.5)
     const double d_q = q_max_ * cd * s_over_m;                                                               // (7.6)
     double dmax = d_heat_[k];
@@ -235,7 +214,7 @@ void EntryPlanner::breakpoints() {
 Status EntryPlanner::fit_profile(double s_m) {
   Status s;
   level_at_max_ = false;
-  const bool three = profile_kind_ == DragProfileKind::kThreeSegment;
+  const bool three = params_.drag_profile == DragProfileKind::kThreeSegment;
   if (three) {
     three_ = ThreeSegmentProfile{e0_, diag_.e1_Jpkg, diag_.e2_Jpkg, taem_energy_, diag_.di_mps2, 1.0, diag_.df_mps2};
     s = three_.solve_constant_drag(s_m, kMinLevel_mps2, kMaxLevel_mps2);   // (7.12)
@@ -258,7 +237,7 @@ Status EntryPlanner::fit_profile(double s_m) {
   if (s != Status::kOk) return s;
   int clipped = 0;
   for (int k = 0; k < kGrid; ++k) {
-    if (profile_kind_ == DragProfileKind::kThreeSegment) {
+    if (params_.drag_profile == DragProfileKind::kThreeSegment) {
       d_[k] = three_.drag(e_[k]);
       dp_[k] = three_.slope(e_[k]);
       dpp_[k] = 0.0;  // linear segments
@@ -470,7 +449,7 @@ void EntryPlanner::rk4(double s_m, const Rop& y, double h, Rop& out) const {
 // s_rev >= total range: no reversal, states stored in base_. Otherwise restart from base_ at
 // the step containing s_rev; with store, every step boundary goes to track_.
 Status EntryPlanner::integrate(double s_rev, bool store, Rop& final_state) {
-  const int n = rk4_steps_;
+  const int n = params_.rk4_steps;
   const double h = s_total_ / n;
   Rop y{from_.longitude_rad, from_.latitude_rad, from_.heading_rad};
   if (s_rev >= s_total_) {
@@ -527,7 +506,7 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
   Status s = integrate(2.0 * s_total_, false, end);  // base run, no reversal
   if (s != Status::kOk) return s;
   int evaluations = 1;
-  const double f_tol_base = 0.25 * crossrange_tol_m_ / r_mean_;
+  const double f_tol_base = 0.25 * params_.crossrange_tol_m / r_mean_;
   const TrackErrors base = track_errors(from_.latitude_rad, from_.longitude_rad, a_mission_, end.lat, end.lon);
   if (from_.energy_Jpkg <= e_corridor_ || std::fabs(base.crossrange_rad) < f_tol_base) {
     // Planning inside the corridor phase, where the tracker steers laterally and a planned
@@ -544,7 +523,7 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
     if (integrate(s_trial, false, y) != Status::kOk) return std::nan("");
     return track_errors(from_.latitude_rad, from_.longitude_rad, a_mission_, y.lat, y.lon).crossrange_rad;
   };
-  const double f_tol = 0.25 * crossrange_tol_m_ / r_mean_;
+  const double f_tol = 0.25 * params_.crossrange_tol_m / r_mean_;
   // Reversal range from (just after) the planning point to the end; secant/Brent on a2.
   const double s_lo = 1e-9 * s_total_, s_hi = s_total_ * (1.0 - 1e-9);
   numerics::RootResult root = numerics::brent(crossrange, s_lo, s_hi, 1e-9 * s_total_, 60, f_tol);
@@ -574,7 +553,7 @@ Status EntryPlanner::reversal_search(double& s_rev, double& crossrange_rad, doub
         best_s = s_end;
       }
     }
-    if (!(best_abs < kBestEffortCrossrangeFraction * diag_.b_mission_rad)) {
+    if (!(best_abs < params_.best_effort_crossrange_fraction * diag_.b_mission_rad)) {
       lateral_unreachable_ = true;
       return st;
     }
@@ -604,17 +583,17 @@ Status EntryPlanner::prepare_corridor(double d_actual) {
   corridor();
   // Closed corridor: the active maximum drag below Lmin. Lmin is a manoeuvrability limit,
   // not a structural one (§7.1), so short closures are flown on the maximum constraint;
-  // a corridor closed over more than kMaxClosedFraction of the grid is a failure.
+  // a corridor closed over more than max_closed_fraction of the grid is a failure.
   int closed = 0;
   for (int k = 0; k < kGrid; ++k) {
     if (!std::isfinite(d_floor_[k]) || !(d_max_[k] > 0.0)) return Status::kCorridorClosed;
     if (d_max_[k] <= d_floor_[k]) ++closed;
   }
   diag_.corridor_closed_points = closed;
-  if (closed > kMaxClosedFraction * kGrid) return Status::kCorridorClosed;
+  if (closed > params_.max_closed_fraction * kGrid) return Status::kCorridorClosed;
   breakpoints();
-  diag_.di_mps2 = initial_drag_ == InitialDrag::kActual ? d_actual : d_min_[0];
-  if (diag_.di_mps2 < kDragFloor_mps2) diag_.di_mps2 = kDragFloor_mps2;
+  diag_.di_mps2 = params_.initial_drag == InitialDrag::kActual ? d_actual : d_min_[0];
+  if (diag_.di_mps2 < params_.drag_floor_mps2) diag_.di_mps2 = params_.drag_floor_mps2;
   diag_.df_mps2 = models_.drag_mps2(alpha_[kGrid - 1], taem_drag_altitude_m_,
                                     OnboardModels::taem_speed_mps(taem_lat_, taem_energy_, taem_drag_altitude_m_));
   return Status::kOk;
@@ -625,7 +604,7 @@ Status EntryPlanner::length_iteration(double range_desired, double& s_m, double&
   double cross = 0.0, down = 0.0;
   converged = false;
   lateral_unreachable_ = false;  // set by reversal_search, read by lateral_short()
-  for (int it = 0; it < max_iterations_; ++it) {
+  for (int it = 0; it < params_.max_length_iterations; ++it) {
     diag_.iterations = it + 1;
     Status s = fit_profile(s_m);
     if (s != Status::kOk) return s;
@@ -639,9 +618,9 @@ Status EntryPlanner::length_iteration(double range_desired, double& s_m, double&
     diag_.downrange_err_m = range_desired - range_flown;
     // The shortest-range (maximum-drag) profile still flies past the aim point: no length
     // fits. Reported, with this profile kept as the best effort.
-    if (level_at_max_ && range_desired - range_flown < -downrange_tol_m_) return Status::kRangeTooLong;
-    if (std::fabs(range_desired - range_flown) < downrange_tol_m_) {
-      converged = diag_.reversal_best_effort || std::fabs(diag_.crossrange_err_m) < crossrange_tol_m_;
+    if (level_at_max_ && range_desired - range_flown < -params_.downrange_tol_m) return Status::kRangeTooLong;
+    if (std::fabs(range_desired - range_flown) < params_.downrange_tol_m) {
+      converged = diag_.reversal_best_effort || std::fabs(diag_.crossrange_err_m) < params_.crossrange_tol_m;
       break;
     }
     s_m += range_desired - range_flown;  // (7.22)
@@ -656,30 +635,29 @@ bool EntryPlanner::lateral_short() const {
   // Judged only in the first tenth of the energy span, before the heat pulse: later, a
   // best-effort plan just after a flown reversal is normal (the lateral corridor steers the
   // rest out), and moving alpha then swaps a profile on the heat-flux limit for one the
-  // vehicle cannot reach without exceeding it (a dispersed HORUS run at E/E_entry = 0.55:
-  // alpha 43.9 -> 20 deg, 750 kW/m^2, 2181 km long).
-  const double early = taem_energy_ + kLateralMoveSpanFraction * (entry_energy_ - taem_energy_);
+  // vehicle cannot reach without exceeding it.
+  const double early = taem_energy_ + params_.lateral_move_span_fraction * (entry_energy_ - taem_energy_);
   return from_.energy_Jpkg > early &&
-         (lateral_unreachable_ || (diag_.reversal_best_effort && std::fabs(diag_.crossrange_err_m) > crossrange_tol_m_));
+         (lateral_unreachable_ || (diag_.reversal_best_effort && std::fabs(diag_.crossrange_err_m) > params_.crossrange_tol_m));
 }
 
 bool EntryPlanner::below_glide_floor() const {
   // The drag the range needs is below the wings-level equilibrium glide somewhere between
   // the end of the capture part of the profile (where it first reaches the floor, or after
-  // kCaptureSpanFraction of the span) and the terminal phase (where the tracker's range
+  // capture_span_fraction of the span) and the terminal phase (where the tracker's range
   // control takes over). Floor: L = g - V^2/r - 2 omega V cos(lat) sin(chi) ((2.45) with
   // gamma' = 0 and sigma = 0; the Earth-rate term is a sixth of the need for the eastbound
   // X-33 at Mach 20, so the rotation-free Lmin (7.7) would call its nominal plan infeasible),
   // lat and chi on the planning-point -> TAEM great circle at the planned range fraction.
   const double span = e0_ - taem_energy_;
-  const double e_terminal = taem_energy_ + kTerminalSpanFraction * (entry_energy_ - taem_energy_);
+  const double e_terminal = taem_energy_ + terminal_span_fraction_ * (entry_energy_ - taem_energy_);
   const double s_end = s_cum_[kGrid - 1];
   bool entered = false;
   for (int k = 0; k < kGrid && e_[k] > e_terminal; ++k) {
     const double f = s_end > 0.0 ? s_cum_[k] / s_end : 0.0;  // planned range fraction
     const TrackPoint p = great_circle_point(from_.latitude_rad, from_.longitude_rad, taem_lat_, taem_lon_, f);
     const double floor = level_flight_lift_need_mps2(r_[k], v_[k], p.lat_rad, p.azimuth_rad) / lod_[k];
-    if (!entered) entered = d_[k] >= floor || e_[k] < e0_ - kCaptureSpanFraction * span;
+    if (!entered) entered = d_[k] >= floor || e_[k] < e0_ - params_.capture_span_fraction * span;
     if (entered && d_[k] < floor) return true;
   }
   return false;
@@ -692,8 +670,8 @@ void EntryPlanner::alpha_ld_max_on_grid() {
     const double h = r_[k] - kEarthRadius_m;
     const double mach = models_.mach(h, velocity_from_energy_mps(e_[k], r_[k]));
     double best_alpha = alpha_base_[k], best_lod = -1.0;
-    for (int i = 0; i <= kAlphaScanSteps; ++i) {
-      const double a = alpha_max_ * i / kAlphaScanSteps;
+    for (int i = 0; i <= params_.alpha_scan_steps; ++i) {
+      const double a = alpha_max_ * i / params_.alpha_scan_steps;
       double cl, cd;
       models_.aero().coefficients(a, mach, cl, cd);
       if (cd > 0.0 && cl / cd > best_lod) { best_lod = cl / cd; best_alpha = a; }
@@ -704,12 +682,12 @@ void EntryPlanner::alpha_ld_max_on_grid() {
 
 void EntryPlanner::set_ranging_blend(double blend) {
   // alpha = alpha_profile + blend w(E) (alpha_LD - alpha_profile) where alpha_LD is lower.
-  // w ramps 0 -> 1 over kRangingRampFraction of the span below the planning energy (no alpha
+  // w ramps 0 -> 1 over ranging_ramp_fraction of the span below the planning energy (no alpha
   // step at the first ranging plan; later plans keep w = 1 there, continuing the flown alpha)
   // and back to 0 over the next-to-last such span before TAEM (0 over the last one), so the
   // TAEM alpha (and with it the TAEM Mach and q alpha) stays the mission's.
   const double span = entry_energy_ - taem_energy_;
-  const double ramp = kRangingRampFraction * span;
+  const double ramp = params_.ranging_ramp_fraction * span;
   for (int k = 0; k < kGrid; ++k) {
     const double w = (ranging_blend_min_ > 0.0 ? 1.0 : clamp((e0_ - e_[k]) / ramp, 0.0, 1.0)) *
                      clamp((e_[k] - taem_energy_ - ramp) / ramp, 0.0, 1.0);
@@ -720,6 +698,71 @@ void EntryPlanner::set_ranging_blend(double blend) {
 }
 
 // ------------------------------------------------------------------ plan
+Status EntryPlanner::set_planning_state() {
+  if (!finite_state(from_)) return Status::kNonFinite;
+  // In-flight L/D estimate (1 before the drag is measurable): the corridor floor (7.7), the
+  // equilibrium-glide radius and the bank extraction then use the vehicle's sensed L/D.
+  const double lod_scale = from_.lift_over_drag_scale;
+  if (!(lod_scale >= params_.lift_scale_min && lod_scale <= params_.lift_scale_max)) return Status::kInvalidInput;
+  models_.aero().set_lift_scale(lod_scale);
+  if (!(from_.energy_Jpkg > taem_energy_ * 1.001) || !(from_.radius_m > kEarthRadius_m)) return Status::kInvalidInput;
+
+  // Mission geometry (7.1), (7.2) from the planning position to the TAEM point.
+  const GreatCircle gc = great_circle(from_.latitude_rad, from_.longitude_rad, taem_lat_, taem_lon_);
+  a_mission_ = gc.azimuth_rad;
+  diag_.b_mission_rad = gc.arc_rad;
+  diag_.a_mission_rad = gc.azimuth_rad;
+  diag_.chi_minus_a_rad = wrap_pi(from_.heading_rad - a_mission_);
+  // First bank side: the quadrant rule (fig. 7.20) at the first plan. A replan keeps the side
+  // the last plan flies at the planning energy (reversal search tries the other side only
+  // when no single reversal nulls the crossrange with it): the heading offset crosses zero
+  // while the first bank turns the vehicle towards the target, and re-applying the rule there
+  // reverses the bank for nothing (with a slow roll at high speed, a roll through wings level
+  // of a minute or more and a phugoid).
+  sign0_ = initial_bank_sign(from_.heading_rad, a_mission_);
+  if (flown_side_known_ && from_.energy_Jpkg > e_corridor_) {
+    sign0_ = from_.energy_Jpkg > flown_e_rev_ ? flown_sign0_ : -flown_sign0_;
+  }
+  diag_.initial_bank_sign = sign0_;
+  r_mean_ = 0.5 * (from_.radius_m + taem_radius_);
+  diag_.s_initial_m = gc.arc_rad * r_mean_;  // R_d, the first length S0 (7.22)
+  return Status::kOk;
+}
+
+Status EntryPlanner::ranging_alpha(double range_desired, double d_actual, Status first, double& s_m, double& s_rev,
+                                   bool& converged) {
+  // Ranging alpha (thesis 6.3.1, ranging phase): the range needs less drag than the vehicle
+  // can hold even wings level at the profile alpha (low L/D, a long way to go). alpha moves
+  // towards alpha(L/D max) from the planning point to near TAEM; the smallest move that lifts
+  // the floor below the needed drag is found by bisection on the blend (the full move when
+  // even that is not enough: the longest range the vehicle can fly). The same move is made
+  // when no single reversal can null the crossrange early in the flight (lateral_short: a
+  // vehicle that needs too little bank for its range cannot turn). Once used, the blend never
+  // decreases in later plans, so the alpha reference stays continuous from plan to plan.
+  alpha_ld_max_on_grid();
+  auto feasible = [&](double blend) {
+    set_ranging_blend(blend);
+    double s_trial = range_desired;
+    bool conv_trial = false;
+    if (prepare_corridor(d_actual) != Status::kOk) return false;
+    return length_iteration(range_desired, s_trial, s_rev, conv_trial) == Status::kOk && !below_glide_floor() &&
+           !lateral_short();
+  };
+  double lo = ranging_blend_min_, hi = 1.0;
+  if (ranging_blend_min_ > 0.0 && feasible(ranging_blend_min_)) hi = lo;
+  for (int i = 0; i < params_.ranging_bisections && hi - lo > params_.ranging_blend_tol; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (feasible(mid)) hi = mid;
+    else lo = mid;
+  }
+  set_ranging_blend(hi);
+  s_m = range_desired;
+  Status s = prepare_corridor(d_actual);
+  if (s == Status::kOk) s = length_iteration(range_desired, s_m, s_rev, converged);
+  if (s != Status::kOk && first != Status::kOk) s = first;  // report the original failure
+  return s;
+}
+
 Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   diag_ = PlannerDiagnostics{};
   out.status = Status::kInvalidInput;
@@ -738,32 +781,16 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
     return s;
   };
 
-  if (!finite_state(from_)) return fail(Status::kNonFinite);
-  // In-flight L/D estimate (1 before the drag is measurable): the corridor floor (7.7), the
-  // equilibrium-glide radius and the bank extraction then use the vehicle's sensed L/D.
-  const double lod_scale = from_.lift_over_drag_scale;
-  if (!(lod_scale >= kMinLiftScale && lod_scale <= kMaxLiftScale)) return fail(Status::kInvalidInput);
-  models_.aero().set_lift_scale(lod_scale);
-  if (!(from_.energy_Jpkg > taem_energy_ * 1.001) || !(from_.radius_m > kEarthRadius_m)) return fail(Status::kInvalidInput);
-
-  // Mission geometry (7.1), (7.2) from the planning position to the TAEM point.
-  const GreatCircle gc = great_circle(from_.latitude_rad, from_.longitude_rad, taem_lat_, taem_lon_);
-  a_mission_ = gc.azimuth_rad;
-  diag_.b_mission_rad = gc.arc_rad;
-  diag_.a_mission_rad = gc.azimuth_rad;
-  diag_.chi_minus_a_rad = wrap_pi(from_.heading_rad - a_mission_);
-  sign0_ = initial_bank_sign(from_.heading_rad, a_mission_);
-  diag_.initial_bank_sign = sign0_;
-  r_mean_ = 0.5 * (from_.radius_m + taem_radius_);
-  const double range_desired = gc.arc_rad * r_mean_;  // R_d
-  double s_m = range_desired;                          // S0
-  diag_.s_initial_m = s_m;
+  const Status state = set_planning_state();
+  if (state != Status::kOk) return fail(state);
+  const double range_desired = diag_.s_initial_m;  // R_d
+  double s_m = range_desired;                      // S0
 
   const double alpha_from = alpha_profile_.alpha_rad(from_.energy_Jpkg / entry_energy_);
   const double d_actual = from_.drag_mps2 > 0.0
                               ? from_.drag_mps2
                               : models_.drag_mps2(alpha_from, from_.radius_m - kEarthRadius_m, from_.velocity_mps);
-  Status s = build_grid(from_.energy_Jpkg, initial_drag_ == InitialDrag::kActual && d_actual < kGradedGridDrag_mps2);
+  Status s = build_grid(from_.energy_Jpkg, params_.initial_drag == InitialDrag::kActual && d_actual < params_.graded_grid_drag_mps2);
   if (s != Status::kOk) return fail(s);
   s = prepare_corridor(d_actual);
   if (s != Status::kOk) return fail(s);
@@ -773,38 +800,7 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   const Status first = s;
   const bool lateral = lateral_short();
   if ((s == Status::kOk || lateral) && (ranging_blend_min_ > 0.0 || lateral || below_glide_floor())) {
-    // Ranging alpha (thesis 6.3.1, ranging phase): the range needs less drag than the
-    // vehicle can hold even wings level at the profile alpha (low L/D, a long way to go).
-    // alpha moves towards alpha(L/D max) from the planning point to near TAEM; the smallest
-    // move that lifts the floor below the needed drag is found by bisection on the blend
-    // (the full move when even that is not enough: the longest range the vehicle can fly).
-    // The same move is made when no single reversal can null the crossrange early in the
-    // flight (lateral_short): at the profile alpha the X-38 needs so little bank for its
-    // 9360 km that it cannot turn. Once used, the blend never decreases in later plans, so
-    // the alpha reference stays continuous from plan to plan. (Aiming the blend at a bank
-    // margin above the floor was measured worse: 500 dispersed X-33 runs 61.4 % with 10 deg,
-    // 67.8 % with none.)
-    alpha_ld_max_on_grid();
-    auto feasible = [&](double blend) {
-      set_ranging_blend(blend);
-      double s_trial = range_desired;
-      bool conv_trial = false;
-      if (prepare_corridor(d_actual) != Status::kOk) return false;
-      return length_iteration(range_desired, s_trial, s_rev, conv_trial) == Status::kOk && !below_glide_floor() &&
-             !lateral_short();
-    };
-    double lo = ranging_blend_min_, hi = 1.0;
-    if (ranging_blend_min_ > 0.0 && feasible(ranging_blend_min_)) hi = lo;
-    for (int i = 0; i < kRangingBisections && hi - lo > kRangingBlendTol; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      if (feasible(mid)) hi = mid;
-      else lo = mid;
-    }
-    set_ranging_blend(hi);
-    s_m = range_desired;
-    s = prepare_corridor(d_actual);
-    if (s == Status::kOk) s = length_iteration(range_desired, s_m, s_rev, converged);
-    if (s != Status::kOk && first != Status::kOk) s = first;  // report the original failure
+    s = ranging_alpha(range_desired, d_actual, first, s_m, s_rev, converged);
   }
   const bool too_long = s == Status::kRangeTooLong;
   if (s != Status::kOk && !too_long) return fail(s);
@@ -816,11 +812,16 @@ Status EntryPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
   diag_.status = too_long ? Status::kRangeTooLong : (converged ? Status::kOk : Status::kNotConverged);
   fill_output(out);
   if (converged) ranging_blend_min_ = diag_.ranging_blend;
+  if (diag_.status == Status::kOk || too_long) {  // the plans the tracker flies
+    flown_side_known_ = true;
+    flown_sign0_ = sign0_;
+    flown_e_rev_ = e_rev_;
+  }
   return diag_.status;
 }
 
 void EntryPlanner::fill_output(ReferenceProfile& out) {
-  const int n = rk4_steps_;
+  const int n = params_.rk4_steps;
   const double h = s_total_ / n;
   int saturated = 0;
   out.n_points = kGrid;

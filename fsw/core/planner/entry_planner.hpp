@@ -11,18 +11,14 @@
 // Fixed capacity, no heap after init(), bounded loops, every failure returned as a Status.
 #pragma once
 
+#include "guidance_params.hpp"
 #include "guidance_types.hpp"
+#include "mission_data.hpp"
 #include "models/onboard_models.hpp"
 #include "planner/drag_profile.hpp"
-
-namespace reentry::config {
-struct Mission;
-}
+#include "planner/planner_params.hpp"
 
 namespace reentry::fsw {
-
-enum class DragProfileKind { kThreeSegment, kSmooth };
-enum class InitialDrag { kActual, kLmin };
 
 struct PlannerDiagnostics {
   Status status = Status::kInvalidInput;
@@ -53,17 +49,20 @@ struct PlannerDiagnostics {
 class EntryPlanner {
  public:
   static constexpr int kGrid = kProfileCapacity;    // energy grid points
-  static constexpr int kMaxRkSteps = 4000;
+  static constexpr int kMaxRkSteps = PlannerParams::kMaxRkSteps;
 
-  Status init(const config::Mission& mission);
+  /// The models and the alpha profile are copied; the planner's tunables are params.planner.
+  Status init(const OnboardModels& models, const AlphaProfile& alpha_profile, const GuidanceMission& mission,
+              const GuidanceLawParams& params);
   /// Plan from a state (entry or in flight). No allocation. out.status mirrors the result.
   Status plan(const RelativeState& from, ReferenceProfile& out);
   const PlannerDiagnostics& diagnostics() const { return diag_; }
   const OnboardModels& models() const { return models_; }
   /// Options that a mission selects; may be overridden before plan() (tools, tests).
-  void set_profile_kind(DragProfileKind k) { profile_kind_ = k; }
-  void set_initial_drag(InitialDrag d) { initial_drag_ = d; }
-  DragProfileKind profile_kind() const { return profile_kind_; }
+  void set_profile_kind(DragProfileKind k) { params_.drag_profile = k; }
+  void set_initial_drag(InitialDrag d) { params_.initial_drag = d; }
+  DragProfileKind profile_kind() const { return params_.drag_profile; }
+  const PlannerParams& params() const { return params_; }
   double entry_energy_Jpkg() const { return entry_energy_; }
   double taem_energy_Jpkg() const { return taem_energy_; }
   /// RelativeState at the mission entry interface, drag from the on-board models.
@@ -78,6 +77,8 @@ class EntryPlanner {
  private:
   struct Rop { double lon, lat, chi; };   // reduced-order state (2.42)-(2.44)
 
+  Status set_planning_state();
+  Status ranging_alpha(double range_desired, double d_actual, Status first, double& s_m, double& s_rev, bool& converged);
   Status build_grid(double e0, bool graded);
   Status prepare_corridor(double d_actual);
   Status length_iteration(double range_desired, double& s_m, double& s_rev, bool& converged);
@@ -113,9 +114,9 @@ class EntryPlanner {
 
   OnboardModels models_;
   AlphaProfile alpha_profile_;
-  double taem_box_altitude(const config::Mission& mission) const;
-  DragProfileKind profile_kind_ = DragProfileKind::kSmooth;
-  InitialDrag initial_drag_ = InitialDrag::kActual;
+  double taem_box_altitude(const TaemTarget& taem) const;
+  PlannerParams params_;
+  double terminal_span_fraction_ = 0.25;
 
   // mission data
   RelativeState entry_{};
@@ -130,11 +131,12 @@ class EntryPlanner {
   bool level_at_max_ = false;         // fit: the length is below the shortest profile's (maximum level)
   mutable int range_hint_ = -1;       // last cell of energy_at_range (search hint only)
   double ranging_blend_min_ = 0.0;  // blend of the last converged plan (never decreases in flight)
+  // Bank side of the last plan handed out (first sign and reversal energy): a replan keeps the
+  // side being flown (see plan()).
+  bool flown_side_known_ = false;
+  int flown_sign0_ = 1;
+  double flown_e_rev_ = 0.0;
   double sigma_rate_max_ = 0.0;
-  int rk4_steps_ = 600;
-  int max_iterations_ = 20;
-  double downrange_tol_m_ = 1500.0;
-  double crossrange_tol_m_ = 1000.0;
   bool initialised_ = false;
 
   // per-plan state

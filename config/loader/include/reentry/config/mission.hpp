@@ -8,12 +8,14 @@
 #pragma once
 
 #include <limits>
+
+#include "mission/mission_interface.hpp"
 #include <string>
 #include <vector>
 
 namespace reentry::config {
 
-inline constexpr double kNotConstrained = std::numeric_limits<double>::infinity();
+inline constexpr double kNotConstrained = mission::kUnconstrained;
 
 /// Values over (alpha, Mach), row-major: values[i_alpha * mach.size() + i_mach].
 struct Table2D {
@@ -53,52 +55,37 @@ struct AeroModel {
   OutOfRangePolicy out_of_range = OutOfRangePolicy::kClamp;
 };
 
+/// Heat-flux model of the point whose limit the mission constrains (`vehicle.heating_model`).
+enum class HeatingModel {
+  kChapmanStagnation,  // "chapman_stagnation": stagnation point at the nose radius (thesis 3.5)
+  kBettsLeadingEdge,   // "betts_leading_edge": Shuttle wing leading edge, alpha dependent (Betts 2010, 6.1)
+};
+
 struct Vehicle {
   std::string name;
   double mass_kg = 0.0;
   double reference_area_m2 = 0.0;
-  double nose_radius_m = 0.0;
+  double nose_radius_m = 0.0;     // used by chapman_stagnation
+  HeatingModel heating_model = HeatingModel::kChapmanStagnation;
   AeroModel aero;
 };
 
-/// State relative to the rotating Earth, spherical coordinates.
-struct SphericalState {
-  double altitude_m = 0.0;
-  double longitude_rad = 0.0;
-  double latitude_rad = 0.0;
-  double velocity_mps = 0.0;      // ground-relative speed
-  double flight_path_rad = 0.0;   // gamma (negative: descending)
-  double heading_rad = 0.0;       // chi, from North, clockwise
-};
+/// The interface types are shared with the flight software and the truth model
+/// (common/mission/mission_interface.hpp): entry state relative to the rotating Earth, TAEM
+/// interface with its tolerances (thesis 3.1.2 for X-33 / HORUS; adopted and justified in the
+/// file otherwise), path and control limits.
+using SphericalState = mission::EntryInterface;
+using TaemInterface = mission::TaemTarget;
+using PathConstraints = mission::PathLimits;
 
-struct TaemInterface {
-  double altitude_m = 0.0;
-  double velocity_mps = 0.0;
-  double longitude_rad = 0.0;     // aim point
-  double latitude_rad = 0.0;
-  double heading_rad = 0.0;       // required heading at TAEM (towards the HAC)
-  // Tolerances (thesis 3.1.2 for X-33 / HORUS; adopted and justified in the file otherwise).
-  double range_tol_m = 0.0;       // distance to the aim point
-  double altitude_tol_m = 0.0;
-  double mach_target = 0.0;       // 0: not specified
-  double mach_tol = kNotConstrained;
-  double flight_path_rad = 0.0;
-  double flight_path_tol_rad = kNotConstrained;
-  double heading_tol_rad = 0.0;
-  double hac_radius_m = 0.0;      // heading-alignment circle radius
-};
-
-struct PathConstraints {
-  double heat_flux_max_Wpm2 = kNotConstrained;
-  double heat_load_max_Jpm2 = kNotConstrained;
-  double load_factor_max_g = kNotConstrained;      // body-normal, thesis 3.7
-  double q_alpha_max_Pa_rad = kNotConstrained;
-  double dynamic_pressure_max_Pa = kNotConstrained;
-  double alpha_max_rad = 0.0;
-  double alpha_rate_max_radps = 0.0;
-  double sigma_rate_max_radps = 0.0;
-  double alpha_accel_max_radps2 = 0.0;
-  double sigma_accel_max_radps2 = 0.0;
+/// A number of the [guidance] section that the loader passes through uninterpreted: the
+/// tunables of the planner and the tracker, which the flight software's own parameter lists
+/// validate (fsw/guidance/mission_adapter). Keys of [guidance.planner] / [guidance.tracker]
+/// come as "planner.<key>" / "tracker.<key>".
+struct TuningValue {
+  std::string key;
+  double value = 0.0;
+  bool integer = false;  // written as a TOML integer
 };
 
 struct GuidanceParams {
@@ -106,20 +93,13 @@ struct GuidanceParams {
   int plan_latency_ticks = 5;            // lockstep: plan requested at k is adopted at k + L
   double replan_period_s = 50.0;
   double replan_drag_error_frac = 0.15;  // replan when |D - Dref| / Dref exceeds this
+  double drag_error_replan_spacing_s = 5.0;  // ... at most once in this time (optional key)
   std::string drag_profile = "smooth";   // "three_segment" (thesis 7.2) or "smooth"
   std::string initial_drag = "actual";   // "actual" or "lmin" (thesis 7.6)
   std::string onboard_atmosphere = "exponential";  // "exponential" or "table"
-  int rk4_steps = 600;                   // reduced-order integration steps
-  int max_length_iterations = 20;
-  double downrange_tol_m = 1500.0;
-  double crossrange_tol_m = 1000.0;
+  bool onboard_trim = true;              // trimmed on-board aero tables where moment data exist
   double initial_descent_drag_mps2 = 0.05 * 9.80665;  // hold attitude until sensed drag exceeds this
-  // Tracker (thesis 3.12-3.22); where zero, derived from vehicle/corridor data by the documented rule.
-  double zeta = 0.7071067811865476;
-  double omega0_radps = 0.0;
-  double k_integral = 0.0;
-  double k_heading = 0.0;
-  double k_heading_integral = 0.0;
+  std::vector<TuningValue> tuning;       // planner / tracker tunables, in file order of their tables
 };
 
 struct SimParams {
@@ -138,20 +118,35 @@ struct SimParams {
   double time_limit_s = 4000.0;
 };
 
-/// Half-widths of uniform dispersions (Monte Carlo), SI.
+/// Distribution of one dispersed quantity (`distribution`, `<quantity>_distribution`).
+enum class Distribution {
+  kGaussian,  // "gaussian": the number is 3 sigma; draws are truncated at 3 sigma
+  kUniform,   // "uniform": the number is the half-width
+};
+
+/// One dispersed quantity: offsets and scale factors are centred on the nominal value.
+struct Dispersion {
+  double value = 0.0;  // 3 sigma (gaussian) or half-width (uniform), SI
+  Distribution distribution = Distribution::kGaussian;
+};
+
+/// Monte Carlo dispersions of one campaign set ([dispersions] or [stress_dispersions]), SI.
 struct Dispersions {
-  double entry_flight_path_rad = 0.0;
-  double entry_heading_rad = 0.0;
-  double entry_velocity_mps = 0.0;
-  double entry_position_rad = 0.0;       // lat/lon
-  double density_scale = 0.0;            // +-fraction
-  double density_perturbation = 0.0;     // amplitude of the altitude-correlated part
+  Dispersion entry_flight_path_rad;
+  Dispersion entry_heading_rad;
+  Dispersion entry_velocity_mps;
+  Dispersion entry_position_rad;         // lat/lon
+  Dispersion density_scale;              // fraction
+  double density_perturbation = 0.0;     // amplitude of the altitude-correlated part (a random shape)
   double density_correlation_m = 10000.0;
-  double cl_scale = 0.0;
-  double cd_scale = 0.0;
-  double mass_scale = 0.0;
+  Dispersion cl_scale;
+  Dispersion cd_scale;
+  Dispersion mass_scale;
+  // Wind profile scale over [min, max]: uniform over it, or gaussian about its centre with
+  // 3 sigma at its ends.
   double wind_scale_min = 1.0;
   double wind_scale_max = 1.0;
+  Distribution wind_scale_distribution = Distribution::kGaussian;
 };
 
 /// Environment data files (paths resolved relative to the mission file).
@@ -175,7 +170,10 @@ struct Mission {
   bool alpha_profile_planned = false;
   GuidanceParams guidance;
   SimParams sim;
-  Dispersions dispersions;
+  Dispersions dispersions;               // reference campaigns (and seeded SIL runs)
+  // [stress_dispersions]: a second, named set (tools/mc --dispersions stress); optional.
+  bool has_stress_dispersions = false;
+  Dispersions stress_dispersions;
   EnvironmentData environment;
 };
 

@@ -1,0 +1,122 @@
+// The guidance tunables as a mission file sets them ([guidance], [guidance.planner],
+// [guidance.tracker]): defaults inside their documented ranges, values converted from the
+// file's units, and every bad value rejected with the file, the key and the value named.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "guidance/mission_adapter.hpp"
+#include "temp_mission.hpp"
+
+namespace {
+
+using reentry::fsw::GuidanceLawParams;
+using reentry::fsw::GuidanceSetup;
+using reentry::fsw::ParamUnit;
+using reentry_test::replace_once;
+using reentry_test::TempMission;
+
+/// Checks that every default lies inside its documented range (in the file's unit).
+struct RangeCheck {
+  int checked = 0;
+  template <class T>
+  void operator()(const char* key, const T& field, ParamUnit unit, double lo, double hi, const char*) {
+    const double v = reentry::fsw::param_from_si(static_cast<double>(field), unit);
+    EXPECT_GE(v, lo) << key;
+    EXPECT_LE(v, hi) << key;
+    ++checked;
+  }
+};
+
+std::string setup_error(TempMission& t, std::unique_ptr<GuidanceSetup>& setup) {
+  const reentry::config::LoadResult r = t.load();
+  if (!r.ok) return r.error;
+  setup = std::make_unique<GuidanceSetup>();
+  return reentry::fsw::make_guidance_setup(r.mission, *setup);
+}
+
+void add_tuning(TempMission& t, const std::string& tables) { replace_once(t.mission(), "\n[sim]\n", "\n" + tables + "\n[sim]\n"); }
+
+TEST(GuidanceParams, DefaultsLieInTheirDocumentedRangesAndAreConsistent) {
+  const GuidanceLawParams p;
+  RangeCheck shared, planner, tracker;
+  reentry::fsw::visit_shared_guidance_params(p, shared);
+  reentry::fsw::visit_planner_params(p.planner, planner);
+  reentry::fsw::visit_tracker_params(p.tracker, tracker);
+  EXPECT_EQ(shared.checked, 3);
+  EXPECT_GT(planner.checked, 15);
+  EXPECT_GT(tracker.checked, 40);
+  EXPECT_EQ(reentry::fsw::guidance_params_inconsistency(p), nullptr);
+}
+
+TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaults) {
+  for (const char* name : {"horus", "x33", "orbiter", "x38"}) {
+    const auto r = reentry::config::load_mission(name);
+    ASSERT_TRUE(r.ok) << r.error;
+    EXPECT_TRUE(r.mission.guidance.tuning.empty()) << name;
+    auto setup = std::make_unique<GuidanceSetup>();
+    ASSERT_EQ(reentry::fsw::make_guidance_setup(r.mission, *setup), "") << name;
+    EXPECT_EQ(setup->params.tracker.initial_descent_drag_mps2, 0.05 * 9.80665) << name;
+  }
+}
+
+TEST(GuidanceParams, FileValuesAreConvertedToSI) {
+  TempMission t;
+  add_tuning(t,
+             "constraint_margin = 0.95\n"
+             "[guidance.planner]\nrk4_steps = 800\ndownrange_tol_m = 1000\n"
+             "[guidance.tracker]\ncorridor_half_width_min_deg = 2.5\ncorridor_half_width_max_deg = 6.0\nzeta = 0.8\n");
+  std::unique_ptr<GuidanceSetup> s;
+  ASSERT_EQ(setup_error(t, s), "");
+  EXPECT_EQ(s->params.constraint_margin, 0.95);
+  EXPECT_EQ(s->params.planner.rk4_steps, 800);
+  EXPECT_EQ(s->params.planner.downrange_tol_m, 1000.0);
+  EXPECT_NEAR(s->params.tracker.corridor_half_width_min_rad, 2.5 * 3.14159265358979323846 / 180.0, 1e-16);
+  EXPECT_EQ(s->params.tracker.zeta, 0.8);
+  // A key set to its default gives the default bit for bit (the defaults are written in the
+  // order the conversion computes).
+  EXPECT_EQ(s->params.tracker.corridor_half_width_max_rad, GuidanceLawParams{}.tracker.corridor_half_width_max_rad);
+}
+
+struct BadTuning {
+  const char* label;
+  const char* tables;
+  const char* key;    // expected in the message
+  const char* what;   // expected in the message (the value or the reason)
+};
+
+class BadGuidanceParam : public ::testing::TestWithParam<BadTuning> {};
+
+TEST_P(BadGuidanceParam, IsRejectedNamingFileKeyAndValue) {
+  const BadTuning& c = GetParam();
+  TempMission t;
+  add_tuning(t, c.tables);
+  std::unique_ptr<GuidanceSetup> s;
+  const std::string error = setup_error(t, s);
+  ASSERT_NE(error, "") << c.label;
+  EXPECT_NE(error.find(t.mission_path()), std::string::npos) << error;
+  EXPECT_NE(error.find(c.key), std::string::npos) << error;
+  EXPECT_NE(error.find(c.what), std::string::npos) << error;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Tunables, BadGuidanceParam,
+    ::testing::Values(
+        BadTuning{"unknown", "[guidance.tracker]\ncorridor_width_deg = 3.0\n", "guidance.tracker.corridor_width_deg", "unknown"},
+        BadTuning{"wrong_unit", "[guidance.tracker]\ncorridor_half_width_min_rad = 0.05\n",
+                  "guidance.tracker.corridor_half_width_min_rad", "unknown"},
+        BadTuning{"unknown_top", "constraint_margn = 0.9\n", "guidance.constraint_margn", "0.9"},
+        BadTuning{"range", "[guidance.tracker]\nzeta = 12.0\n", "guidance.tracker.zeta", "12"},
+        BadTuning{"capacity", "[guidance.planner]\nrk4_steps = 5000\n", "guidance.planner.rk4_steps", "5000"},
+        BadTuning{"integer", "[guidance.planner]\nrk4_steps = 600.5\n", "guidance.planner.rk4_steps", "600.5"},
+        BadTuning{"text", "[guidance.tracker]\nzeta = \"0.7\"\n", "guidance.tracker.zeta", "\"0.7\""},
+        BadTuning{"nan", "[guidance.tracker]\nzeta = nan\n", "guidance.tracker.zeta", "nan"},
+        BadTuning{"inconsistent", "[guidance.tracker]\ncorridor_half_width_min_deg = 8.0\n",
+                  "guidance.tracker.corridor_half_width_min_deg", "inconsistent"},
+        BadTuning{"phases", "terminal_span_fraction = 0.4\n", "guidance.terminal_span_fraction", "inconsistent"},
+        BadTuning{"not_a_table", "planner = 3\n", "guidance.planner", "table"}),
+    [](const ::testing::TestParamInfo<BadTuning>& info) { return std::string(info.param.label); });
+
+}  // namespace
