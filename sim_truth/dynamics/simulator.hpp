@@ -59,7 +59,7 @@ struct TruthSample {
   double mach = 0.0;
   double rho_kgpm3 = 0.0;
   double q_Pa = 0.0;
-  double qdot_Wpm2 = 0.0;         // Chapman stagnation-point heat flux (3.5)
+  double qdot_Wpm2 = 0.0;         // the vehicle's heating model: Chapman (3.5) or Betts's leading edge
   double Q_Jpm2 = 0.0;            // integrated heat load
   double n_g = 0.0;               // body-normal load factor (3.7), in g
   double D_mps2 = 0.0;            // drag acceleration

@@ -128,6 +128,33 @@ TEST(TruthModelAD, HorusTrimmedDerivativesMatchFiniteDifferences) { check_point_
 
 TEST(TruthModelAD, X38DerivativesMatchFiniteDifferencesLateInFlight) { check_point_derivatives("x38", 13, 1200.0, 30.2); }
 
+// The Orbiter's heating is Betts's leading-edge fit, which depends on alpha: its AD derivatives
+// (d qdot / d alpha included) against finite differences, and the optimizer's heat-flux row
+// against the heat flux the simulator reports for the same state and attitude.
+TEST(TruthModelAD, OrbiterLeadingEdgeHeatingDerivativesMatchFiniteDifferences) {
+  check_point_derivatives("orbiter", 14, 600.0, 38.0);
+}
+
+TEST(EntryProblem, HeatFluxRowIsTheVehicleHeatingModelOfTheSimulator) {
+  for (const char* name : {"orbiter", "horus"}) {
+    const config::Mission m = load(name);
+    auto sim = advanced(m, 3, 500.0);
+    auto fresh = make_run_simulator(m, 3, true, nullptr);
+    const EntryProblem pb(*fresh, EntryMode::kMaxMargin, 2000.0);
+    ASSERT_EQ(pb.path_rows().front(), PathRow::kHeatFlux) << name;
+    const truth::TruthSample ts = sim->sample();
+    double x[6], xdot[6], u[2] = {ts.alpha_rad, ts.sigma_rad};
+    for (int i = 0; i < 6; ++i) x[i] = sim->state()[static_cast<size_t>(i)];
+    std::vector<double> g(static_cast<size_t>(pb.n_path()));
+    pb.point(sim->time_s(), x, u, xdot, g.data());
+    EXPECT_NEAR(g[0] * m.constraints.heat_flux_max_Wpm2, ts.qdot_Wpm2, 1e-9 * ts.qdot_Wpm2) << name;
+    const double expected = m.vehicle.heating_model == config::HeatingModel::kBettsLeadingEdge
+                                ? truth::betts_leading_edge_heat_flux_Wpm2(ts.rho_kgpm3, ts.airspeed_mps, ts.alpha_rad)
+                                : truth::chapman_heat_flux_Wpm2(ts.rho_kgpm3, ts.airspeed_mps, m.vehicle.nose_radius_m);
+    EXPECT_NEAR(ts.qdot_Wpm2, expected, 1e-9 * expected) << name;
+  }
+}
+
 TEST(EntryProblem, ArrivalLineFrameMatchesTheReferee) {
   const config::Mission m = load("x33");
   auto sim = make_run_simulator(m, 0, false, nullptr);
