@@ -18,6 +18,7 @@ TEST(EntryOptimal, X33NominalMaximumMarginFlownOpenLoopReachesTheCollocatedEndPo
   OracleOptions o;
   o.mode = EntryMode::kMaxMargin;
   o.replay = true;
+  o.solve_decided = true;  // a success: solved only on request
   const OracleResult r = run_oracle(load("x33"), 0, false, o);
   ASSERT_TRUE(r.error.empty()) << r.error;
   ASSERT_TRUE(converged(r.entry.solution.status)) << r.entry.solution.ipopt_status;
@@ -37,6 +38,7 @@ TEST(EntryOptimal, HorusDispersedMinimumMissIsAtLeastAsGoodAsTheGuidance) {
   // Seed 9: a guidance success 2.48 km from the aim point (tolerance 3 km).
   OracleOptions o;
   o.mode = EntryMode::kMinMiss;
+  o.solve_decided = true;
   const OracleResult r = run_oracle(load("horus"), 9, true, o);
   ASSERT_TRUE(r.error.empty()) << r.error;
   ASSERT_TRUE(r.flown.verdict.success);
@@ -48,16 +50,40 @@ TEST(EntryOptimal, HorusDispersedMinimumMissIsAtLeastAsGoodAsTheGuidance) {
 }
 
 TEST(EntryOptimal, HorusRunTheGuidanceLosesIsProvenFeasibleByAnOpenLoopFlight) {
-  // Seed 8: the guidance ends 3.33 km from the aim point (tolerance 3 km), no path limit exceeded.
-  const OracleResult r = run_oracle(load("horus"), 8, true, OracleOptions{});
+  // Seed 17 (reference dispersions): the guidance exceeds the heat-flux limit; the wings-level
+  // pull-out does not, so only the optimizer can judge the run.
+  const OracleResult r = run_oracle(load("horus"), 17, true, OracleOptions{});
   ASSERT_TRUE(r.error.empty()) << r.error;
   ASSERT_FALSE(r.flown.verdict.success);
+  ASSERT_TRUE(r.pullout.exceeded.empty());
+  ASSERT_TRUE(r.solved);
   ASSERT_TRUE(converged(r.entry.solution.status)) << r.entry.solution.ipopt_status;
   EXPECT_GT(r.entry.figures.margin, 0.0);
   ASSERT_TRUE(r.replayed);
   EXPECT_TRUE(r.replay.verdict.success);
+  for (const auto& v : r.replay.verdict.violations) ADD_FAILURE() << "replay violation " << v;
   EXPECT_EQ(r.feasibility, Feasibility::kProvenOpenLoop);
   EXPECT_TRUE(r.feasible);
+}
+
+TEST(EntryOptimal, HorusRunBeyondThePulloutBoundHasNoPositiveMarginEither) {
+  // Seed 11: the wings-level pull-out at alpha_max already exceeds the heat-flux limit, so the
+  // campaign does not solve it; solved anyway, the optimizer (an independent method: every
+  // control history, not the one descent) finds no trajectory with a positive margin.
+  OracleOptions o;
+  const OracleResult cheap = run_oracle(load("horus"), 11, true, o);
+  ASSERT_TRUE(cheap.error.empty()) << cheap.error;
+  ASSERT_FALSE(cheap.pullout.exceeded.empty());
+  EXPECT_FALSE(cheap.solved);
+  EXPECT_EQ(cheap.feasibility, Feasibility::kPulloutBound);
+  EXPECT_FALSE(cheap.feasible);
+  o.solve_decided = true;
+  const OracleResult solved = run_oracle(load("horus"), 11, true, o);
+  ASSERT_TRUE(solved.solved);
+  ASSERT_TRUE(converged(solved.entry.solution.status)) << solved.entry.solution.ipopt_status;
+  EXPECT_LT(solved.entry.figures.margin, 0.0);
+  EXPECT_FALSE(solved.replay.verdict.success);
+  EXPECT_EQ(solved.feasibility, Feasibility::kPulloutBound);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@ const char* to_string(Feasibility f) {
     case Feasibility::kProvenOpenLoop: return "proven_open_loop";
     case Feasibility::kOptimizerOnly: return "optimizer_only";
     case Feasibility::kInfeasible: return "infeasible";
+    case Feasibility::kPulloutBound: return "infeasible_pullout_bound";
     case Feasibility::kUndecided: return "undecided";
   }
   return "unknown";
@@ -76,14 +77,26 @@ OracleResult run_oracle(const config::Mission& mission, std::uint64_t seed, bool
     else flown.push_back(s);
   };
   tools::ClosedLoopResult cl = tools::run_closed_loop(mission, seed, dispersed, {}, false, record);
+  tools::PulloutBound pullout = tools::wings_level_pullout_bound(mission, seed, dispersed);
   OracleResult out;
-  if (!cl.error.empty()) {
-    out.error = cl.error;
-    out.flown = std::move(cl);
-    return out;
+  const bool bound_exceeded = pullout.error.empty() && !pullout.exceeded.empty();
+  if (!cl.error.empty() || !pullout.error.empty()) {
+    out.error = !cl.error.empty() ? cl.error : "pull-out bound: " + pullout.error;
+  } else if (options.solve_decided || !(cl.verdict.success || bound_exceeded)) {
+    out = solve_oracle(mission, seed, dispersed, flown, cl.verdict.success, options);
+    out.solved = out.error.empty();
   }
-  out = solve_oracle(mission, seed, dispersed, flown, cl.verdict.success, options);
+  // A flight is the proof of feasibility, the pull-out bound a proof of infeasibility that
+  // stands over the optimizer's "infeasible" (the best it found). A run both proven feasible and
+  // beyond the bound keeps its proof: the campaign report names it as a bug to explain.
+  if (out.error.empty() && cl.verdict.success) {
+    out.feasibility = Feasibility::kFlown;
+  } else if (out.error.empty() && bound_exceeded && out.feasibility != Feasibility::kProvenOpenLoop) {
+    out.feasibility = Feasibility::kPulloutBound;
+  }
+  out.feasible = out.error.empty() && (out.feasibility == Feasibility::kFlown || out.feasibility == Feasibility::kProvenOpenLoop);
   out.flown = std::move(cl);
+  out.pullout = std::move(pullout);
   return out;
 }
 
