@@ -55,6 +55,12 @@ EntryProblem::EntryProblem(const truth::Simulator& sim, EntryMode mode, double t
 
   const bool footprint = mode == EntryMode::kMaxDownrange || mode == EntryMode::kMinDownrange ||
                          mode == EntryMode::kMaxCrossrange || mode == EntryMode::kMinCrossrange;
+  if (footprint) path_rows_.push_back(PathRow::kGlide);
+  {
+    const truth::scalar::Vec3<double> r0(x0_[0], x0_[1], x0_[2]), v0(x0_[3], x0_[4], x0_[5]);
+    e_entry_ = truth::PointModel::specific_energy(r0, v0);
+  }
+  if (footprint && !mission_.alpha_profile.x.empty()) path_rows_.push_back(PathRow::kAlphaProfile);
   terminal_rows_.push_back(TermRow::kEnergy);
   if (mode == EntryMode::kMaxMargin || mode == EntryMode::kMinMiss) terminal_rows_.push_back(TermRow::kRange);
   terminal_rows_.push_back(TermRow::kAltHigh);
@@ -112,6 +118,7 @@ void EntryProblem::path_bounds(double* lo, double* hi) const {
   for (size_t k = 0; k < path_rows_.size(); ++k) {
     lo[k] = -std::numeric_limits<double>::infinity();
     hi[k] = path_rows_[k] == PathRow::kSkipOut ? skip_alt_m_ : 1.0;
+    if (path_rows_[k] == PathRow::kAlphaProfile) lo[k] = -1.0;
   }
 }
 

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "dynamics/simulator.hpp"
+#include "environment/interpolation.hpp"
 #include "hermite_simpson.hpp"
 #include "reentry/config/mission.hpp"
 
@@ -41,7 +42,20 @@ enum class EntryMode { kMinMiss, kMaxMargin, kMaxDownrange, kMinDownrange, kMaxC
 const char* to_string(EntryMode m);
 
 /// Rows of the path constraints (when the mission limits them).
-enum class PathRow { kHeatFlux, kLoadFactor, kDynamicPressure, kQAlpha, kSkipOut };
+/// Footprint modes only: kGlide, the flight-path angle at most kFootprintGlideMaxGamma_rad;
+/// kAlphaProfile, alpha within kFootprintAlphaBand_rad of the mission's profile alpha(E/E_entry).
+enum class PathRow { kHeatFlux, kLoadFactor, kDynamicPressure, kQAlpha, kSkipOut, kGlide, kAlphaProfile };
+
+/// The footprint is that of gliding entries: a trajectory that climbs (skips) could carry the
+/// vehicle further below the skip-out altitude, but no entry guidance flies one and the solver
+/// wanders into them (X-33 max downrange: 16800 km after 1000 iterations, not converged). Two
+/// degrees admit the climbs of a pull-out and of a bank reversal flown at the rate limit.
+constexpr double kFootprintGlideMaxGamma_rad = 2.0 * M_PI / 180.0;
+/// The footprint is the one the mission's guidance can reach: flying its angle-of-attack profile
+/// (within the band the tracker's reversal modulation uses), the bank free within its limits.
+/// With alpha free the solver seeks the vehicle's L/D max far from any flown profile and does
+/// not converge in 1000 iterations (X-33: 13000 km beyond the aim point, still rising).
+constexpr double kFootprintAlphaBand_rad = 3.0 * M_PI / 180.0;
 
 class EntryProblem {
  public:
@@ -85,6 +99,22 @@ class EntryProblem {
   template <class T>
   T objective(const T* x, const T* u, const T* p) const;
 
+  /// The mission's alpha profile at normalised energy E/E_entry (linear, clamped at its ends).
+  template <class T>
+  T profile_alpha(const T& e_norm) const {
+    const auto& tab = mission_.alpha_profile;
+    const int n = static_cast<int>(tab.x.size());
+    if (n == 1) return T(tab.y[0]);
+    const int j = truth::detail::bracket(tab.x.data(), n, truth::scalar::value(e_norm));
+    const double x0 = tab.x[static_cast<size_t>(j)], x1 = tab.x[static_cast<size_t>(j + 1)];
+    const double y0 = tab.y[static_cast<size_t>(j)], y1 = tab.y[static_cast<size_t>(j + 1)];
+    const double w = (truth::scalar::value(e_norm) - x0) / (x1 - x0);
+    if (w <= 0.0) return T(y0);
+    if (w >= 1.0) return T(y1);
+    const T wt = (e_norm - x0) / (x1 - x0);
+    return y0 + (y1 - y0) * wt;
+  }
+
   /// Final-point quantities the terminal rows and the objectives use.
   template <class T>
   struct Final {
@@ -109,6 +139,7 @@ class EntryProblem {
   double alpha_min_rad_ = 0.0;
   double aim_[3] = {}, line_dir_[3] = {}, line_right_[3] = {};  // aim point and arrival-line frame (R)
   double limit_[4] = {};
+  double e_entry_ = 0.0;  // specific energy of the entry state (the alpha profile's scale)
   std::vector<PathRow> path_rows_;
   std::vector<TermRow> terminal_rows_;
 };
@@ -130,6 +161,12 @@ void EntryProblem::point(const T& t, const T* x, const T* u, T* xdot, T* path) c
       case PathRow::kDynamicPressure: path[k] = o.q / limit_[2]; break;
       case PathRow::kQAlpha: path[k] = o.q * o.alpha / limit_[3]; break;
       case PathRow::kSkipOut: path[k] = o.h_m; break;
+      case PathRow::kGlide: path[k] = o.gamma / kFootprintGlideMaxGamma_rad; break;
+      case PathRow::kAlphaProfile: {
+        const T e_norm = truth::PointModel::specific_energy(r, v) / e_entry_;
+        path[k] = (u[0] - profile_alpha(e_norm)) / kFootprintAlphaBand_rad;
+        break;
+      }
     }
   }
 }

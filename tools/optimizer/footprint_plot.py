@@ -18,15 +18,20 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def boundary(points):
-    """The extremal points in order around the footprint: far end, max crossrange inwards,
-    near end, min crossrange outwards (only converged solves)."""
-    ok = [p for p in points if p["status"] in ("optimal", "acceptable")]
-    by = lambda mode: [p for p in ok if p["mode"] == mode]
-    far, near = by("max_downrange"), by("min_downrange")
-    left = sorted(by("max_crossrange"), key=lambda p: -p["downrange_target_km"])
-    right = sorted(by("min_crossrange"), key=lambda p: p["downrange_target_km"])
-    ring = far + left + near + right
+    """The reached extremal points (flown open loop within every path limit) in order around the footprint: max crossrange from the far
+    end inwards, then min crossrange from the near end outwards."""
+    ok = [p for p in points if p.get("replay", {}).get("reached")]
+    for p in ok:  # the point the open-loop flight reached (the solve's own end point when converged)
+        p["along_km"], p["cross_km"] = p["replay"]["along_km"], p["replay"]["cross_km"]
+    left = sorted([p for p in ok if p["mode"] == "max_crossrange"], key=lambda p: -p["downrange_target_km"])
+    right = sorted([p for p in ok if p["mode"] == "min_crossrange"], key=lambda p: p["downrange_target_km"])
+    ring = left + right
     return ring + ring[:1] if ring else ring
+
+
+def unwrap(lon, ref):
+    """Longitude within 180 deg of ref (tracks crossing 0 or 180 deg stay continuous)."""
+    return ref + (lon - ref + 180.0) % 360.0 - 180.0
 
 
 def main(out_dir):
@@ -43,7 +48,13 @@ def main(out_dir):
             tracks[-1]["lat"].append(float(row["lat_deg"]))
             tracks[-1]["lon"].append(float(row["lon_deg"]))
             prev_t = t
+    entry, aim = doc["entry_lon_deg"], doc["aim_lon_deg"]
+    ref = entry + 0.5 * (unwrap(aim, entry) - entry)  # midway between entry and aim
+    for tr in tracks:
+        tr["lon"] = [unwrap(x, ref) for x in tr["lon"]]
     ring = boundary(doc["points"])
+    for p in ring:
+        p["final_lon_deg"] = unwrap(p["final_lon_deg"], ref)
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5.5))
     for tr in tracks:
         guid = tr["label"] == "guidance_nominal"
@@ -52,8 +63,8 @@ def main(out_dir):
     if ring:
         ax.plot([p["final_lon_deg"] for p in ring], [p["final_lat_deg"] for p in ring], "b.-", lw=1.2,
                 label="reachable TAEM footprint")
-    ax.plot(doc["entry_lon_deg"], doc["entry_lat_deg"], "k^", ms=8, label="entry")
-    ax.plot(doc["aim_lon_deg"], doc["aim_lat_deg"], "r*", ms=14, label="aim point")
+    ax.plot(unwrap(entry, ref), doc["entry_lat_deg"], "k^", ms=8, label="entry")
+    ax.plot(unwrap(aim, ref), doc["aim_lat_deg"], "r*", ms=14, label="aim point")
     ax.set_xlabel("longitude [deg]")
     ax.set_ylabel("latitude (geocentric) [deg]")
     ax.set_title(f"{doc['mission']}: extremal trajectories")

@@ -1,13 +1,14 @@
 // reentry_optimal: optimal entry trajectories on the truth simulator's own models.
 //   reentry_optimal --mission M [--seed S --dispersed] [--mode margin|miss] [--replay] [--out DIR]
 //       one run's problem, warm-started from the guidance's flight of that run
-//   reentry_optimal --mission M --footprint --out DIR [--points K]
-//       the reachable TAEM footprint from the (nominal) entry state: max / min downrange, then
-//       max / min crossrange at K downranges between them (footprint.json, footprint_tracks.csv)
+//   reentry_optimal --mission M --footprint --out DIR [--points K --step KM]
+//       the reachable TAEM footprint from the (nominal) entry state: max / min crossrange at the
+//       aim point's downrange, then at K downrange steps on each side (continuation; the edge
+//       lies within a step beyond the last converged one) (footprint.json, footprint_tracks.csv)
 //   reentry_optimal --betts [--heating-limit 70]
 //       Betts's Space Shuttle maximum-crossrange benchmark
 //   --repeat N solves the same problem N times and prints the median and maximum wall time.
-// Exit: 0 solved (every solve converged), 1 a solve did not converge, 2 bad input.
+// Exit: 0 solved (footprint: both solves at the aim's downrange), 1 a solve did not converge, 2 bad input.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -131,7 +132,8 @@ FlownRun fly(const config::Mission& mission, std::uint64_t seed, bool dispersed)
   return f;
 }
 
-int run_footprint(const config::Mission& mission, const EntrySolveOptions& options, int points, const std::string& out) {
+int run_footprint(const config::Mission& mission, const EntrySolveOptions& options, int points, double step_m,
+                  const std::string& out) {
   const FlownRun flown = fly(mission, 0, false);
   if (!flown.result.error.empty() || flown.samples.size() < 2) {
     std::fprintf(stderr, "reentry_optimal: nominal flight failed: %s\n", flown.result.error.c_str());
@@ -150,7 +152,7 @@ int run_footprint(const config::Mission& mission, const EntrySolveOptions& optio
   fs::create_directories(out);
   std::ofstream tracks(fs::path(out) / "footprint_tracks.csv");
   write_track_csv(tracks, "guidance_nominal", track(EntryProblem(*sim, EntryMode::kMinMiss, guess.p[0]), guess), true);
-  int failures = 0;
+  int failures = 0, aim_failures = 0;  // solves not converged / aim-downrange points not reached
   std::vector<double> walls;
   auto record = [&](const EntryResult& r, const char* label, double downrange_m) {
     const auto& f = r.figures;
@@ -167,23 +169,50 @@ int run_footprint(const config::Mission& mission, const EntrySolveOptions& optio
     p["iterations"] = r.solution.iterations;
     p["wall_s"] = r.solution.wall_s;
     p["downrange_target_km"] = downrange_m * 1e-3;
+    // The independent check: the solve's control history flown open loop in a fresh truth
+    // simulator. Its end point, reached within every path limit, is a reachable TAEM point
+    // whether or not the solver converged (a solve stopped at its iteration limit is then an
+    // inner bound of the footprint, not its edge).
+    const EntryProblem pb(*sim, r.mode, r.figures.tf_s, downrange_m);
+    std::string err;
+    auto replay_sim = make_run_simulator(mission, 0, false, &err);
+    bool reached = false;
+    if (replay_sim && !r.solution.trajectory.x.empty()) {
+      const ReplayResult rp = replay_open_loop(*replay_sim, pb, r.solution.trajectory);
+      const auto path = truth::path_constraint_violations(mission.constraints, rp.summary.maxima);
+      reached = rp.summary.event == truth::SimEvent::kTaemEnergy && path.empty();
+      p["replay"] = {{"event", truth::to_string(rp.summary.event)},
+                     {"along_km", rp.verdict.miss_along_m * 1e-3},
+                     {"cross_km", rp.verdict.miss_cross_m * 1e-3},
+                     {"end_point_diff_km", rp.final_position_diff_m * 1e-3},
+                     {"path_violations", path},
+                     {"reached", reached}};
+      std::printf("%-15s open-loop replay: %s, along %+9.1f km, across %+8.1f km, %.1f km from the solve's end%s\n", "",
+                  truth::to_string(rp.summary.event), rp.verdict.miss_along_m * 1e-3, rp.verdict.miss_cross_m * 1e-3,
+                  rp.final_position_diff_m * 1e-3, path.empty() ? "" : " (path limit exceeded)");
+    }
     pts.push_back(p);
-    if (ok) write_track_csv(tracks, label, track(EntryProblem(*sim, r.mode, r.figures.tf_s, downrange_m), r.solution.trajectory), false);
+    if (ok || reached) write_track_csv(tracks, label, track(pb, r.solution.trajectory), false);
+    return ok || reached;
   };
-  const EntryResult far = solve_entry(*sim, EntryMode::kMaxDownrange, guess, options);
-  record(far, "max_downrange", far.figures.along_m);
-  const EntryResult near = solve_entry(*sim, EntryMode::kMinDownrange, guess, options);
-  record(near, "min_downrange", near.figures.along_m);
-  if (converged(far.solution.status) && converged(near.solution.status)) {
-    const double d_max = far.figures.along_m, d_min = near.figures.along_m;
-    for (EntryMode mode : {EntryMode::kMaxCrossrange, EntryMode::kMinCrossrange}) {
-      // Sweep inwards from the far end, each solve warm-started from the previous one.
-      Trajectory start = far.solution.trajectory;
-      for (int k = points; k >= 1; --k) {
-        const double d = d_min + (d_max - d_min) * k / (points + 1.0);
+  // Continuation in downrange from the aim point: the crossrange extremes at the aim's downrange
+  // (warm start: the guidance's nominal flight), then at downranges stepped outwards on each
+  // side, each warm-started from its neighbour, until a solve fails (the footprint's edge lies
+  // within a step beyond the last converged downrange). Maximising the downrange itself sends
+  // the solver far from any converging path (X-33: 8700-16800 km, iteration limit at 3000).
+  for (EntryMode mode : {EntryMode::kMaxCrossrange, EntryMode::kMinCrossrange}) {
+    const EntryResult at_aim = solve_entry(*sim, mode, guess, options, 0.0);
+    if (!record(at_aim, to_string(mode), 0.0)) {
+      ++aim_failures;
+      continue;
+    }
+    for (int side : {+1, -1}) {
+      Trajectory start = at_aim.solution.trajectory;
+      for (int k = 1; k <= points; ++k) {
+        const double d = side * k * step_m;
         const EntryResult r = solve_entry(*sim, mode, start, options, d);
-        record(r, to_string(mode), d);
-        if (converged(r.solution.status)) start = r.solution.trajectory;
+        if (!record(r, to_string(mode), d)) break;
+        start = r.solution.trajectory;
       }
     }
   }
@@ -205,7 +234,7 @@ int run_footprint(const config::Mission& mission, const EntrySolveOptions& optio
   std::printf("%s: footprint of %zu solves (%d not converged), solve wall median %.1f s, max %.1f s -> %s\n",
               mission.name.c_str(), walls.size(), failures, median(walls),
               walls.empty() ? 0.0 : *std::max_element(walls.begin(), walls.end()), out.c_str());
-  return failures == 0 ? 0 : 1;
+  return aim_failures == 0 ? 0 : 1;
 }
 
 }  // namespace
@@ -215,8 +244,9 @@ int main(int argc, char** argv) {
   std::string mission_arg, mode_arg = "margin", out;
   std::uint64_t seed = 7;
   bool dispersed = false, replay = true, footprint = false, betts = false, exact = false;
-  int segments = EntrySolveOptions{}.segments, max_iter = EntrySolveOptions{}.solver.max_iterations, points = 6, repeat = 1;
+  int segments = EntrySolveOptions{}.segments, max_iter = EntrySolveOptions{}.solver.max_iterations, points = 3, repeat = 1;
   int print_level = 0;
+  double step_km = 500.0;
   double max_wall = EntrySolveOptions{}.solver.max_wall_s, heating_limit = INFINITY;
   app.add_option("--mission", mission_arg, "mission name or TOML file");
   app.add_option("--mode", mode_arg, "margin (maximum common constraint margin) or miss (minimum TAEM miss)")
@@ -225,7 +255,8 @@ int main(int argc, char** argv) {
   app.add_flag("--dispersed", dispersed, "the dispersed run of --seed (default: nominal)");
   app.add_flag("--replay,!--no-replay", replay, "fly the optimal control history open loop in the truth simulator (default)");
   app.add_flag("--footprint", footprint, "reachable TAEM footprint from the entry state (needs --out)");
-  app.add_option("--points", points, "footprint: crossrange extremes at this many downranges")->check(CLI::Range(1, 40));
+  app.add_option("--points", points, "footprint: downrange steps on each side of the aim point")->check(CLI::Range(0, 40));
+  app.add_option("--step", step_km, "footprint: downrange step [km]")->check(CLI::PositiveNumber);
   app.add_option("--out", out, "output directory (solution.json + solution.csv, or the footprint files)");
   app.add_option("--segments", segments, "Hermite-Simpson segments")->check(CLI::Range(4, 2000));
   app.add_option("--max-iter", max_iter, "IPOPT iteration limit")->check(CLI::Range(0, 100000));
@@ -258,7 +289,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "reentry_optimal: --footprint needs --out DIR\n");
       return 2;
     }
-    return run_footprint(loaded.mission, so, points, out);
+    return run_footprint(loaded.mission, so, points, step_km * 1e3, out);
   }
 
   OracleOptions o;
