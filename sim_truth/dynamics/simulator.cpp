@@ -26,9 +26,6 @@ using Mat3 = Eigen::Matrix3d;
 
 const Vec3 kOmegaVec(0.0, 0.0, EarthConstants::kOmega_radps);
 
-// C_{R,I}: the R-frame is rotated by omega * t about the common Z axis.
-Mat3 dcm_I_to_R(double t_s) { return rotation_I_to_R(t_s); }
-
 bool equals(const std::string& a, const char* b) { return a == b; }
 }  // namespace
 
@@ -77,18 +74,10 @@ bool parse_attitude(const std::string& s, AttitudeChoice* out) {
 }
 
 // ---------------------------------------------------------------------------------------------
-struct Simulator::Models {
-  ShapeModel shape = ShapeModel::kSphere;
-  std::optional<Gravity> gravity;
-  std::optional<Atmosphere> atmosphere;
-  std::optional<Wind> wind;  // empty: no wind
-  std::optional<Aerodynamics> aero;
+// The point model (environment, vehicle, dynamics at one instant) and the integrator settings.
+struct Simulator::Models : PointModel {
   numerics::RkfMethod method = numerics::RkfMethod::kRkf56;
   numerics::RkfTolerances<kStates> tol{};
-  double mass_kg = 0.0, area_m2 = 0.0, nose_radius_m = 0.0;
-  config::HeatingModel heating = config::HeatingModel::kChapmanStagnation;
-  double cl_scale = 1.0, cd_scale = 1.0;
-  bool trim = false;
 };
 
 // Achieved attitude of one command segment: ideal (instant), or a first-order lag with time
@@ -125,15 +114,6 @@ struct Simulator::Attitude {
   };
   double t0 = 0.0;
   Channel alpha, sigma;
-};
-
-struct Simulator::Derived {
-  Vec3 accel_I = Vec3::Zero();
-  Vec3 aero_I = Vec3::Zero();
-  double h_m = 0.0, r_m = 0.0, lat = 0.0, lon = 0.0;
-  double V = 0.0, gamma = 0.0, chi = 0.0, airspeed = 0.0, mach = 0.0;
-  double rho = 0.0, q = 0.0, qdot = 0.0, n_g = 0.0, D = 0.0, L = 0.0, E = 0.0;
-  double alpha = 0.0, sigma = 0.0, flap = 0.0, elevon = 0.0;
 };
 
 Simulator::Simulator() = default;
@@ -319,83 +299,17 @@ double Simulator::next_attitude_breakpoint(double after_t) const {
   return best;
 }
 
-Simulator::Derived Simulator::evaluate(double t, const State& y, bool full) const {
-  const Models& m = *models_;
-  Derived d;
-  const Vec3 r_I(y[0], y[1], y[2]);
-  const Vec3 v_I(y[3], y[4], y[5]);
-  const Mat3 C_RI = dcm_I_to_R(t);
-  const Mat3 C_IR = C_RI.transpose();
-  const Vec3 r_R = C_RI * r_I;
-  const Vec3 v_rel_I = v_I - kOmegaVec.cross(r_I);  // Earth-relative velocity, I components
-
-  d.r_m = r_I.norm();
-  d.h_m = altitude_m(r_R, m.shape);
-  const Vec3 up_I = r_I / d.r_m;  // -Z of the V-frame (geocentric vertical)
-  Vec3 air_I = v_rel_I;
-  const bool need_v_frame = full || m.wind;
-  Mat3 C_VR = Mat3::Identity();
-  if (need_v_frame) {
-    d.lat = geocentric_latitude_rad(r_R);
-    d.lon = longitude_rad(r_R);
-    C_VR = dcm_R_to_V(d.lon, d.lat);
-  }
-  const auto atm = m.atmosphere->at(d.h_m);
-  d.rho = atm.density_kgpm3;
-  if (m.wind) {
-    const Vec3 wind_V(m.wind->velocity_V(d.h_m));  // north, east, down
-    air_I -= C_IR * (C_VR.transpose() * wind_V);    // V_A = V_G - V_wind (2.29)
-  }
-  d.airspeed = air_I.norm();
-  d.mach = atm.speed_of_sound_mps > 0.0 ? d.airspeed / atm.speed_of_sound_mps : 0.0;
-  d.q = 0.5 * d.rho * d.airspeed * d.airspeed;
-  attitude_at(t, &d.alpha, &d.sigma);
-
-  const auto c = m.aero->coefficients(d.alpha, d.mach, d.q, m.trim, m.cl_scale, m.cd_scale);
-  d.flap = c.flap_rad;
-  d.elevon = c.elevon_rad;
-  const double lift_N = d.q * m.area_m2 * c.cl;  // (2.21)
-  const double drag_N = d.q * m.area_m2 * c.cd;
-  d.L = lift_N / m.mass_kg;
-  d.D = drag_N / m.mass_kg;
-
-  // Aerodynamic force in the airspeed frames (2.27)/(2.29), assembled directly in I: drag along
-  // -V_A; lift normal to V_A, in the vertical plane through V_A for sigma = 0 (upward), rotated
-  // by sigma about V_A, positive sigma towards the right of V_A (+Y of the trajectory frame).
-  // Side-slip is zero.
-  d.aero_I = Vec3::Zero();
-  if (d.airspeed > 0.0) {
-    const Vec3 u = air_I / d.airspeed;
-    Vec3 lift_up = up_I - up_I.dot(u) * u;  // -Z of the trajectory frame
-    const double n = lift_up.norm();
-    if (n > 1e-12) {
-      lift_up /= n;
-    } else {  // vertical flight: bank reference undefined, use the Earth's polar axis
-      lift_up = C_IR * Vec3(0.0, 0.0, 1.0);
-      lift_up = (lift_up - lift_up.dot(u) * u).normalized();
-    }
-    const Vec3 right = u.cross(lift_up);  // +Y of the trajectory frame
-    d.aero_I = -d.D * u + d.L * (std::cos(d.sigma) * lift_up + std::sin(d.sigma) * right);
-  }
-  const Vec3 g_I = C_IR * Vec3(m.gravity->acceleration_R(r_R));  // (2.28)
-  d.accel_I = g_I + d.aero_I;                                    // (2.25)
-  d.qdot = heat_flux_Wpm2(m.heating, d.rho, d.airspeed, d.alpha, m.nose_radius_m);  // (3.5) or Betts
-
-  if (full) {
-    const Vec3 v_V = C_VR * (C_RI * v_rel_I);  // north, east, down
-    d.V = v_V.norm();
-    d.gamma = std::atan2(-v_V.z(), std::hypot(v_V.x(), v_V.y()));
-    d.chi = std::atan2(v_V.y(), v_V.x());
-    const double mu = EarthConstants::kMu_m3ps2;
-    d.E = 0.5 * d.V * d.V - mu / d.r_m + mu / EarthConstants::kEquatorialRadius_m;  // (7.8)
-    d.n_g = body_normal_load_factor(lift_N, drag_N, d.alpha, m.mass_kg);            // (3.7)
-  }
-  return d;
+PointOutputs<double> Simulator::evaluate(double t, const State& y, bool full) const {
+  double alpha = 0.0, sigma = 0.0;
+  attitude_at(t, &alpha, &sigma);
+  return models_->evaluate(t, Vec3(y[0], y[1], y[2]), Vec3(y[3], y[4], y[5]), alpha, sigma, full);
 }
+
+const PointModel& Simulator::point_model() const { return *models_; }
 
 void Simulator::derivatives(double t, const State& y, State& dydt) const {
   ++evaluations_;
-  const Derived d = evaluate(t, y, false);
+  const PointOutputs<double> d = evaluate(t, y, false);
   dydt[0] = y[3];  // (2.26)
   dydt[1] = y[4];
   dydt[2] = y[5];
@@ -407,11 +321,8 @@ void Simulator::derivatives(double t, const State& y, State& dydt) const {
 
 std::array<double, 4> Simulator::event_functions(double t, const State& y) const {
   const Vec3 r_I(y[0], y[1], y[2]);
-  const Vec3 v_rel_I = Vec3(y[3], y[4], y[5]) - kOmegaVec.cross(r_I);
-  const double r = r_I.norm();
-  const double mu = EarthConstants::kMu_m3ps2;
-  const double E = 0.5 * v_rel_I.squaredNorm() - mu / r + mu / EarthConstants::kEquatorialRadius_m;
-  const double h = altitude_m(Vec3(dcm_I_to_R(t) * r_I), models_->shape);
+  const double E = PointModel::specific_energy<double>(r_I, Vec3(y[3], y[4], y[5]));
+  const double h = models_->altitude(t, r_I);
   return {E - settings_.E_taem_Jpkg, h, settings_.skip_out_altitude_m - h, settings_.time_limit_s - t};
 }
 
@@ -502,7 +413,7 @@ SimEvent Simulator::advance_to(double t_target) {
 }
 
 TruthSample Simulator::sample() const {
-  const Derived d = evaluate(t_s_, y_, true);
+  const PointOutputs<double> d = evaluate(t_s_, y_, true);
   TruthSample s;
   s.t_s = t_s_;
   s.h_m = d.h_m;
@@ -535,7 +446,7 @@ TruthSample Simulator::sample() const {
 }
 
 NavSample Simulator::nav_sample() const {
-  const Derived d = evaluate(t_s_, y_, false);
+  const PointOutputs<double> d = evaluate(t_s_, y_, false);
   NavSample n;
   n.t_s = t_s_;
   n.r_I_m = Vec3(y_[0], y_[1], y_[2]);

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "dynamics/dispersions.hpp"
+#include "dynamics/point_model.hpp"
 #include "reentry/config/mission.hpp"
 
 namespace reentry::truth {
@@ -58,7 +59,7 @@ struct TruthSample {
   double mach = 0.0;
   double rho_kgpm3 = 0.0;
   double q_Pa = 0.0;
-  double qdot_Wpm2 = 0.0;         // Chapman stagnation-point heat flux (3.5)
+  double qdot_Wpm2 = 0.0;         // the vehicle's heating model: Chapman (3.5) or Betts's leading edge
   double Q_Jpm2 = 0.0;            // integrated heat load
   double n_g = 0.0;               // body-normal load factor (3.7), in g
   double D_mps2 = 0.0;            // drag acceleration
@@ -146,15 +147,17 @@ class Simulator {
   double taem_energy_Jpkg() const { return settings_.E_taem_Jpkg; }
   /// Energy of the entry state (for schedules in normalised energy E/E_entry).
   double entry_energy_Jpkg() const { return E_entry_Jpkg_; }
+  /// The run's truth models at one instant (dispersions applied), as the integrator sees them;
+  /// the trajectory optimizer evaluates the same object with AD scalars.
+  const PointModel& point_model() const;
 
  private:
   struct Models;
   struct Attitude;  // achieved attitude model of one command segment
-  struct Derived;   // everything computed from (t, y) in one evaluation
 
   Simulator();
   void derivatives(double t, const State& y, State& dydt) const;
-  Derived evaluate(double t, const State& y, bool full) const;  // full: also the outputs
+  PointOutputs<double> evaluate(double t, const State& y, bool full) const;  // full: also the outputs
   void attitude_at(double t, double* alpha_rad, double* sigma_rad) const;
   double next_attitude_breakpoint(double after_t) const;
   void start_segment();

@@ -66,27 +66,6 @@ std::optional<Atmosphere> Atmosphere::create(AtmosphereModel model, const std::s
   return a;
 }
 
-AtmosphereSample Atmosphere::at(double altitude_m) const {
-  AtmosphereSample s;
-  if (model_ == AtmosphereModel::kExponential) {
-    s.density_kgpm3 = kRho0_kgpm3 * std::exp(-altitude_m / kScaleHeight_m);  // (2.20)
-    s.temperature_K = kExponentialTemperature_K;
-    s.pressure_Pa = s.density_kgpm3 * kGasConstant_JpkgK * s.temperature_K;  // ideal gas, isothermal
-  } else {
-    // Below the table bottom: values at the bottom. Above the top: ln(rho), ln(p) continue
-    // linearly (exponential decay with the top scale height), temperature held.
-    const double h = std::fmax(altitude_m, h_m_.front());
-    s.density_kgpm3 = std::exp(detail::spline_eval(h_m_, ln_rho_, ln_rho_m2_, h));
-    s.pressure_Pa = std::exp(detail::spline_eval(h_m_, ln_p_, ln_p_m2_, h));
-    s.temperature_K = detail::spline_eval(h_m_, t_K_, t_m2_, std::fmin(h, h_m_.back()));
-  }
-  if (perturbation_amplitude_ != 0.0 || density_scale_ != 1.0) {
-    s.density_kgpm3 *= density_scale_ * (1.0 + perturbation_amplitude_ * perturbation(altitude_m));
-  }
-  s.speed_of_sound_mps = std::sqrt(kGamma * kGasConstant_JpkgK * s.temperature_K);
-  return s;
-}
-
 void Atmosphere::set_density_dispersion(double scale, double perturbation_amplitude, double correlation_length_m,
                                         uint64_t seed) {
   density_scale_ = scale;
@@ -100,13 +79,6 @@ void Atmosphere::set_density_dispersion(double scale, double perturbation_amplit
     wavenumber_radpm_[k] = kTwoPi / wavelength;
     phase_rad_[k] = kTwoPi * unit(rng);
   }
-}
-
-double Atmosphere::perturbation(double altitude_m) const {
-  if (perturbation_amplitude_ == 0.0) return 0.0;
-  double p = 0.0;
-  for (int k = 0; k < kModes; ++k) p += std::sin(wavenumber_radpm_[k] * altitude_m + phase_rad_[k]);
-  return p / kModes;  // equal weights: |p| <= 1
 }
 
 }  // namespace reentry::truth

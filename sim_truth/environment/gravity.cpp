@@ -123,28 +123,6 @@ std::optional<Gravity> Gravity::create(GravityModel model, const std::string& eg
   return from_coefficients(mu, radius, degree_order, c, s, error);
 }
 
-Eigen::Vector3d Gravity::acceleration_R(const Eigen::Vector3d& r_R) const {
-  const double r2 = r_R.squaredNorm();
-  const double r = std::sqrt(r2);
-  if (model_ == GravityModel::kCentral) return -mu_m3ps2_ / (r2 * r) * r_R;  // (2.19)
-  if (model_ == GravityModel::kSphericalHarmonics) return acceleration_harmonics(r_R);
-  // (2.16)-(2.17): radial (outward) and latitudinal (northward) components; the csc(delta)
-  // of the J3 term is multiplied out so that the poles are regular.
-  const double s = r_R.z() / r;
-  const double q = radius_m_ / r;
-  const double g0 = mu_m3ps2_ / r2;
-  const double s2 = s * s;
-  const double g_radial = -g0 * (1.0 - 1.5 * kJ2 * q * q * (3.0 * s2 - 1.0)
-                                 - 2.0 * kJ3 * q * q * q * s * (5.0 * s2 - 3.0)
-                                 - 0.625 * kJ4 * q * q * q * q * (35.0 * s2 * s2 - 30.0 * s2 + 3.0));
-  // g_delta = -3 g0 q^2 cos(delta) [J2 s + J3 q (5 s^2 - 1)/2 + 5/6 J4 q^2 s (7 s^2 - 3)]
-  const double bracket = kJ2 * s + 0.5 * kJ3 * q * (5.0 * s2 - 1.0) + (5.0 / 6.0) * kJ4 * q * q * s * (7.0 * s2 - 3.0);
-  const double g_north_over_cos = -3.0 * g0 * q * q * bracket;
-  // cos(delta) * i_north = (-s x / r, -s y / r, cos^2(delta))
-  const Eigen::Vector3d cos_north(-s * r_R.x() / r, -s * r_R.y() / r, 1.0 - s2);
-  return g_radial * r_R / r + g_north_over_cos * cos_north;
-}
-
 double Gravity::potential(const Eigen::Vector3d& r_R) const {
   const double r = r_R.norm();
   if (model_ == GravityModel::kCentral) return mu_m3ps2_ / r;
@@ -156,67 +134,12 @@ double Gravity::potential(const Eigen::Vector3d& r_R) const {
   return mu_m3ps2_ / r * (1.0 - kJ2 * q * q * p2 - kJ3 * q * q * q * p3 - kJ4 * q * q * q * q * p4);  // (2.14)
 }
 
-// Cunningham / Montenbruck-Gill (3.29)-(3.33) recursion for V_nm, W_nm up to degree n_max + 1.
-namespace {
-void fill_vw(const Eigen::Vector3d& r_R, double radius, int n_max, int stride, double* v, double* w) {
-  const double r2 = r_R.squaredNorm();
-  const double rho = radius * radius / r2;
-  const double x0 = radius * r_R.x() / r2, y0 = radius * r_R.y() / r2, z0 = radius * r_R.z() / r2;
-  const int nm1 = n_max + 1;
-  v[0] = radius / std::sqrt(r2);
-  w[0] = 0.0;
-  for (int m = 0; m <= nm1; ++m) {
-    if (m > 0) {
-      const double vp = v[(m - 1) * stride + m - 1], wp = w[(m - 1) * stride + m - 1];
-      v[m * stride + m] = (2.0 * m - 1.0) * (x0 * vp - y0 * wp);
-      w[m * stride + m] = (2.0 * m - 1.0) * (x0 * wp + y0 * vp);
-    }
-    if (m + 1 <= nm1) {
-      v[(m + 1) * stride + m] = (2.0 * m + 1.0) * z0 * v[m * stride + m];
-      w[(m + 1) * stride + m] = (2.0 * m + 1.0) * z0 * w[m * stride + m];
-    }
-    for (int n = m + 2; n <= nm1; ++n) {
-      v[n * stride + m] = ((2.0 * n - 1.0) * z0 * v[(n - 1) * stride + m] - (n + m - 1.0) * rho * v[(n - 2) * stride + m]) / (n - m);
-      w[n * stride + m] = ((2.0 * n - 1.0) * z0 * w[(n - 1) * stride + m] - (n + m - 1.0) * rho * w[(n - 2) * stride + m]) / (n - m);
-    }
-  }
-}
-}  // namespace
-
-Eigen::Vector3d Gravity::acceleration_harmonics(const Eigen::Vector3d& r_R) const {
-  constexpr int kWork = (kMaxDegree + 3) * (kMaxDegree + 3);
-  double v[kWork];
-  double w[kWork];
-  const int stride = degree_ + 3;
-  fill_vw(r_R, radius_m_, degree_, stride, v, w);
-  double ax = 0.0, ay = 0.0, az = 0.0;
-  for (int m = 0; m <= degree_; ++m) {
-    for (int n = m; n <= degree_; ++n) {
-      const double c = c_[n * stride + m], s = s_[n * stride + m];
-      if (m == 0) {
-        ax -= c * v[(n + 1) * stride + 1];
-        ay -= c * w[(n + 1) * stride + 1];
-        az += (n + 1.0) * (-c * v[(n + 1) * stride] - s * w[(n + 1) * stride]);
-      } else {
-        const double fac = 0.5 * (n - m + 1.0) * (n - m + 2.0);
-        const double vp = v[(n + 1) * stride + m + 1], wp = w[(n + 1) * stride + m + 1];
-        const double vm = v[(n + 1) * stride + m - 1], wm = w[(n + 1) * stride + m - 1];
-        ax += 0.5 * (-c * vp - s * wp) + fac * (c * vm + s * wm);
-        ay += 0.5 * (-c * wp + s * vp) + fac * (-c * wm + s * vm);
-        az += (n - m + 1.0) * (-c * v[(n + 1) * stride + m] - s * w[(n + 1) * stride + m]);
-      }
-    }
-  }
-  const double k = mu_m3ps2_ / (radius_m_ * radius_m_);
-  return Eigen::Vector3d(k * ax, k * ay, k * az);
-}
-
 double Gravity::potential_harmonics(const Eigen::Vector3d& r_R) const {
   constexpr int kWork = (kMaxDegree + 3) * (kMaxDegree + 3);
   double v[kWork];
   double w[kWork];
   const int stride = degree_ + 3;
-  fill_vw(r_R, radius_m_, degree_, stride, v, w);
+  detail::fill_vw<double>(r_R, radius_m_, degree_, stride, v, w);
   double u = 0.0;
   for (int n = 0; n <= degree_; ++n) {
     for (int m = 0; m <= n; ++m) u += c_[n * stride + m] * v[n * stride + m] + s_[n * stride + m] * w[n * stride + m];

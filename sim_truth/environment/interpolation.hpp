@@ -1,11 +1,14 @@
 // Small interpolation helpers of the truth simulator: natural cubic spline (fit allocates
-// at construction; evaluation does not), bracketing, bilinear lookup and a Brent root finder.
+// at construction; evaluation does not, and is scalar-generic), bracketing, bilinear lookup
+// (scalar-generic) and a Brent root finder.
 // The truth keeps its own copies so that it shares no numerical code path with the
 // flight models it judges.
 #pragma once
 
 #include <cmath>
 #include <vector>
+
+#include "environment/scalar.hpp"
 
 namespace reentry::truth::detail {
 
@@ -42,39 +45,44 @@ inline std::vector<double> natural_spline_moments(const std::vector<double>& x, 
 }
 
 /// Spline value (derivative when want_slope) at xq inside [x0, x_{n-1}]; outside, linear
-/// extrapolation with the end slope (a natural spline has zero curvature there).
-inline double spline_eval(const std::vector<double>& x, const std::vector<double>& y,
-                          const std::vector<double>& m, double xq, bool want_slope = false) {
+/// extrapolation with the end slope (a natural spline has zero curvature there). Scalar-generic
+/// in the query (environment/scalar.hpp): the interval is chosen on the value of xq.
+template <class T>
+T spline_eval(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& m, const T& xq,
+              bool want_slope = false) {
   const int n = static_cast<int>(x.size());
-  const int j = bracket(x.data(), n, xq);
+  const double xv = scalar::value(xq);
+  const int j = bracket(x.data(), n, xv);
   const double h = x[j + 1] - x[j];
-  if (xq < x[0] || xq > x[n - 1]) {
-    const bool low = xq < x[0];
+  if (xv < x[0] || xv > x[n - 1]) {
+    const bool low = xv < x[0];
     const int k = low ? 0 : n - 1;
     const double slope = low ? (y[1] - y[0]) / h - h * (2.0 * m[0] + m[1]) / 6.0
                              : (y[n - 1] - y[n - 2]) / h + h * (m[n - 2] + 2.0 * m[n - 1]) / 6.0;
-    return want_slope ? slope : y[k] + slope * (xq - x[k]);
+    return want_slope ? T(slope) : T(y[k] + slope * (xq - x[k]));
   }
-  const double a = (x[j + 1] - xq) / h;
-  const double b = (xq - x[j]) / h;
+  const T a = (x[j + 1] - xq) / h;
+  const T b = (xq - x[j]) / h;
   if (want_slope) {
     return (y[j + 1] - y[j]) / h + h * ((3.0 * b * b - 1.0) * m[j + 1] - (3.0 * a * a - 1.0) * m[j]) / 6.0;
   }
   return a * y[j] + b * y[j + 1] + ((a * a * a - a) * m[j] + (b * b * b - b) * m[j + 1]) * h * h / 6.0;
 }
 
-/// Bilinear interpolation on a row-major (x-major) grid, clamped at the edges.
-inline double bilinear(const std::vector<double>& x, const std::vector<double>& y,
-                       const std::vector<double>& v, double xq, double yq) {
+/// Bilinear interpolation on a row-major (x-major) grid, clamped at the edges; scalar-generic
+/// in the query point (the cell is chosen on its value).
+template <class T>
+T bilinear(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& v, const T& xq,
+           const T& yq) {
   const int nx = static_cast<int>(x.size());
   const int ny = static_cast<int>(y.size());
-  const double xc = std::fmin(std::fmax(xq, x.front()), x.back());
-  const double yc = std::fmin(std::fmax(yq, y.front()), y.back());
-  if (nx == 1 && ny == 1) return v[0];
-  const int i = nx > 1 ? bracket(x.data(), nx, xc) : 0;
-  const int j = ny > 1 ? bracket(y.data(), ny, yc) : 0;
-  const double tx = nx > 1 ? (xc - x[i]) / (x[i + 1] - x[i]) : 0.0;
-  const double ty = ny > 1 ? (yc - y[j]) / (y[j + 1] - y[j]) : 0.0;
+  const T xc = scalar::fmin(scalar::fmax(xq, x.front()), x.back());
+  const T yc = scalar::fmin(scalar::fmax(yq, y.front()), y.back());
+  if (nx == 1 && ny == 1) return T(v[0]);
+  const int i = nx > 1 ? bracket(x.data(), nx, scalar::value(xc)) : 0;
+  const int j = ny > 1 ? bracket(y.data(), ny, scalar::value(yc)) : 0;
+  const T tx = nx > 1 ? T((xc - x[i]) / (x[i + 1] - x[i])) : T(0.0);
+  const T ty = ny > 1 ? T((yc - y[j]) / (y[j + 1] - y[j])) : T(0.0);
   const int i1 = nx > 1 ? i + 1 : i;
   const int j1 = ny > 1 ? j + 1 : j;
   const double v00 = v[i * ny + j], v01 = v[i * ny + j1], v10 = v[i1 * ny + j], v11 = v[i1 * ny + j1];

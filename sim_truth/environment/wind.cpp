@@ -91,12 +91,4 @@ std::optional<Wind> Wind::create(const std::string& earthgram_file, std::string*
   return w;
 }
 
-Eigen::Vector3d Wind::velocity_V(double altitude_m) const {
-  if (!enabled_ || scale_ == 0.0) return Eigen::Vector3d::Zero();
-  const double h = std::fmin(std::fmax(altitude_m, h_m_.front()), h_m_.back());
-  return scale_ * Eigen::Vector3d(detail::spline_eval(h_m_, north_, north_m2_, h),
-                                  detail::spline_eval(h_m_, east_, east_m2_, h),
-                                  -detail::spline_eval(h_m_, up_, up_m2_, h));
-}
-
 }  // namespace reentry::truth

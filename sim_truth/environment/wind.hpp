@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "environment/interpolation.hpp"
+#include "environment/scalar.hpp"
+
 namespace reentry::truth {
 
 class Wind {
@@ -20,7 +23,10 @@ class Wind {
 
   /// Wind velocity in the vertical frame V (north, east, down), natural cubic spline in
   /// altitude; outside the table the edge value is held. Zero when disabled.
-  Eigen::Vector3d velocity_V(double altitude_m) const;
+  Eigen::Vector3d velocity_V(double altitude_m) const { return velocity_V<double>(altitude_m); }
+  /// The same profile, scalar-generic (environment/scalar.hpp).
+  template <class T>
+  Eigen::Matrix<T, 3, 1> velocity_V(const T& altitude_m) const;
 
   /// Multiply the wind by `scale` (dispersions); 0 disables it.
   void set_scale(double scale) { scale_ = scale; }
@@ -37,5 +43,15 @@ class Wind {
   std::vector<double> h_m_;
   std::vector<double> north_, north_m2_, east_, east_m2_, up_, up_m2_;
 };
+
+template <class T>
+Eigen::Matrix<T, 3, 1> Wind::velocity_V(const T& altitude_m) const {
+  if (!enabled_ || scale_ == 0.0) return Eigen::Matrix<T, 3, 1>::Zero();
+  const T h = scalar::fmin(scalar::fmax(altitude_m, h_m_.front()), h_m_.back());
+  const T north = detail::spline_eval(h_m_, north_, north_m2_, h);
+  const T east = detail::spline_eval(h_m_, east_, east_m2_, h);
+  const T down = -detail::spline_eval(h_m_, up_, up_m2_, h);
+  return Eigen::Matrix<T, 3, 1>(scale_ * north, scale_ * east, scale_ * down);
+}
 
 }  // namespace reentry::truth

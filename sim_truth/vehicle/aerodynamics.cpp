@@ -6,6 +6,8 @@
 
 namespace reentry::truth {
 namespace {
+using detail::aero_lookup;
+using detail::interpolate_in_deflection;
 
 void set_error(std::string* error, const std::string& msg) {
   if (error) *error = msg;
@@ -38,27 +40,7 @@ bool check_table(const config::Table2D& t, const std::string& name, std::string*
   return true;
 }
 
-double lookup(const config::Table2D& t, double alpha, double mach) {
-  return detail::bilinear(t.alpha_rad, t.mach, t.values, alpha, mach);
-}
-
-// Linear interpolation in deflection between the tabulated deflections (clamped to their
-// range); value(k) is table k at the flight condition.
-template <class Value>
-double interpolate_in_deflection(const std::vector<double>& deflection, double delta, const Value& value) {
-  const int n = static_cast<int>(deflection.size());
-  if (n == 1) return value(0);
-  const double d = std::fmin(std::fmax(delta, deflection.front()), deflection.back());
-  const int j = detail::bracket(deflection.data(), n, d);
-  const double t = (d - deflection[j]) / (deflection[j + 1] - deflection[j]);
-  return (1.0 - t) * value(j) + t * value(j + 1);
-}
-
-// Increment of one surface at a deflection.
-double increment(const std::vector<config::Table2D>& tables, const std::vector<double>& deflection, double delta,
-                 double alpha, double mach) {
-  return interpolate_in_deflection(deflection, delta, [&](int k) { return lookup(tables[k], alpha, mach); });
-}
+double lookup(const config::Table2D& t, double alpha, double mach) { return aero_lookup(t, alpha, mach); }
 
 // The same increment with the tables evaluated once at one (alpha, Mach): the trim solve below
 // evaluates the moment at many deflections for one flight condition, and re-interpolating the
@@ -72,15 +54,13 @@ struct IncrementAtCondition {
     for (size_t k = 0; k < defl.size() && k < 64; ++k) value[k] = lookup(tables[k], alpha, mach);
   }
   double operator()(double delta) const {
-    return interpolate_in_deflection(deflection, delta, [this](int k) { return value[k]; });
+    return interpolate_in_deflection<double>(deflection, delta, [this](int k) { return value[k]; });
   }
 };
 
-struct SurfaceSolution {
-  double delta;
-  bool solved;
-};
+}  // namespace
 
+namespace detail {
 // Solve base + count * dcm(delta) = 0 for delta in [min, max]. The increment is piecewise
 // linear in delta, so each sub-interval between tabulated deflections is checked for a sign
 // change; the root closest to zero deflection is refined with Brent. Without a root, the
@@ -113,7 +93,7 @@ SurfaceSolution solve_surface(const config::ControlSurface& s, double base, doub
   return {std::fabs(f_min) <= std::fabs(f_max) ? s.min_rad : s.max_rad, false};
 }
 
-}  // namespace
+}  // namespace detail
 
 std::optional<Aerodynamics> Aerodynamics::create(const config::AeroModel& model, std::string* error) {
   if (!check_table(model.cl, "cl", error) || !check_table(model.cd, "cd", error)) return std::nullopt;
@@ -147,62 +127,6 @@ std::optional<Aerodynamics> Aerodynamics::create(const config::AeroModel& model,
     if (model.surfaces.size() >= 2) a.elevon_index_ = 1;
   }
   return a;
-}
-
-AeroCoefficients Aerodynamics::coefficients(double alpha_rad, double mach, double q_Pa, bool trim, double cl_scale,
-                                            double cd_scale) const {
-  AeroCoefficients out;
-  const config::Table2D& cl = model_.cl;
-  if (model_.out_of_range == config::OutOfRangePolicy::kError) {
-    out.out_of_range = alpha_rad < cl.alpha_rad.front() || alpha_rad > cl.alpha_rad.back() ||
-                       mach < cl.mach.front() || mach > cl.mach.back();
-  }
-  double c_l = lookup(model_.cl, alpha_rad, mach);
-  double c_d = lookup(model_.cd, alpha_rad, mach);
-  const bool moments = !model_.cm.empty();
-  const double cm0 = moments ? lookup(model_.cm, alpha_rad, mach) : 0.0;
-  out.cm_total = cm0;
-  if (trim && moments && (flap_index_ >= 0 || elevon_index_ >= 0)) {
-    double flap = 0.0, elevon = 0.0;
-    bool need_elevon = true;
-    const config::ControlSurface* fs = flap_index_ >= 0 ? &model_.surfaces[flap_index_] : nullptr;
-    const config::ControlSurface* es = elevon_index_ >= 0 ? &model_.surfaces[elevon_index_] : nullptr;
-    if (fs) {
-      if (q_Pa < model_.q_flap_fixed_Pa) {
-        flap = std::fmin(std::fmax(model_.flap_fixed_rad, fs->min_rad), fs->max_rad);  // thesis 5.5
-      } else {
-        const SurfaceSolution sol = solve_surface(*fs, cm0, alpha_rad, mach);
-        flap = sol.delta;
-        need_elevon = !sol.solved;
-      }
-    }
-    double cm_flap = cm0;
-    if (fs) cm_flap += fs->count * increment(fs->dcm, fs->deflection_rad, flap, alpha_rad, mach);
-    bool solved = !need_elevon;
-    if (need_elevon && es) {
-      const SurfaceSolution sol = solve_surface(*es, cm_flap, alpha_rad, mach);  // (3.24)
-      elevon = sol.delta;
-      solved = sol.solved;
-    }
-    double cm_total = cm_flap;
-    if (fs) {
-      c_l += fs->count * increment(fs->dcl, fs->deflection_rad, flap, alpha_rad, mach);
-      c_d += fs->count * increment(fs->dcd, fs->deflection_rad, flap, alpha_rad, mach);
-    }
-    if (es) {
-      c_l += es->count * increment(es->dcl, es->deflection_rad, elevon, alpha_rad, mach);
-      c_d += es->count * increment(es->dcd, es->deflection_rad, elevon, alpha_rad, mach);
-      cm_total += es->count * increment(es->dcm, es->deflection_rad, elevon, alpha_rad, mach);
-    }
-    out.flap_rad = flap;
-    out.elevon_rad = elevon;
-    out.cm_total = cm_total;
-    out.trimmed = solved;
-    out.saturated = !solved;
-  }
-  out.cl = c_l * cl_scale;
-  out.cd = c_d * cd_scale;
-  return out;
 }
 
 }  // namespace reentry::truth

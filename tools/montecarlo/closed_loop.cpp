@@ -38,7 +38,8 @@ PulloutBound wings_level_pullout_bound(const config::Mission& mission, std::uint
 }
 
 ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t seed, bool dispersed,
-                                 const std::string& trace_csv, bool guidance_knows_vehicle) {
+                                 const std::string& trace_csv, bool guidance_knows_vehicle,
+                                 const FlownSampleHandler& on_sample) {
   const auto t0 = std::chrono::steady_clock::now();
   ClosedLoopResult r;
   r.seed = seed;
@@ -88,6 +89,7 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
         sigma_prev = out.sigma_rad;
         have_prev = true;
         sim->set_command(out.alpha_rad, out.sigma_rad);
+        if (on_sample) on_sample(*sim, out.alpha_rad, out.sigma_rad);
         if (trace && k % trace_every == 0) {
           const truth::TruthSample t = sim->sample();
           constexpr double d = 180.0 / M_PI;
@@ -103,6 +105,7 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
     sim->advance_to(static_cast<double>(k + 1) * dt);
   }
   if (trace) std::fclose(trace);
+  if (on_sample) on_sample(*sim, alpha_prev, sigma_prev);
   r.summary = sim->summary();
   r.verdict = truth::judge_mission(mission, r.summary, r.rates);
   const auto& c = stack.executive->counters();

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,7 +46,12 @@ PulloutBound wings_level_pullout_bound(const config::Mission& mission, std::uint
 /// (the trajectory sample of the run, for plots and diagnosis). With `guidance_knows_vehicle`
 /// the guidance is given the run's drawn C_L, C_D and mass (a diagnosis, not a flight mode:
 /// no sensor tells a C_D error from a density error; it measures what that ignorance costs).
+/// A non-empty `on_sample` sees the simulator at every tick right after the command (with the
+/// command now in effect) and once more at the end of the run (the event state, last command):
+/// the flown trajectory, e.g. to warm-start the trajectory optimizer.
+using FlownSampleHandler = std::function<void(const truth::Simulator& sim, double alpha_rad, double sigma_rad)>;
 ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t seed, bool dispersed,
-                                 const std::string& trace_csv = {}, bool guidance_knows_vehicle = false);
+                                 const std::string& trace_csv = {}, bool guidance_knows_vehicle = false,
+                                 const FlownSampleHandler& on_sample = {});
 
 }  // namespace reentry::tools

@@ -9,11 +9,20 @@
 // --pullout-bound adds, per run, the maxima of the entry descent flown wings level at
 // alpha_max with the run's dispersions, and to the report the runs that exceed a path
 // constraint there (an upper bound on the success rate that no guidance can beat).
+// --oracle judges every run's feasibility: a guidance success is feasible by its own flight, a
+// run whose wings-level pull-out already exceeds a limit is infeasible (the cheap bound); the
+// optimizer (tools/optimizer: maximum common constraint margin on the run's own truth models,
+// warm-started from the run's flight, the optimal control history flown open loop in the truth
+// simulator) judges the rest (--oracle-all: every run, which checks both cheap verdicts). Each
+// record gets `feasible` (a truth flight proves it: the guidance's or the open-loop one) and the
+// margins; the report `success_rate_feasible` (successes among feasible runs, Wilson interval)
+// and the failure modes of the feasible runs the guidance loses.
 // Run r (0 <= r < N) uses seed S + r, so any run is reproduced alone with the same seed
 // (e.g. tools/sil --seed S+r). A shard i/K flies the runs with r % K == i and writes
 // DIR/runs_shard_i_of_K.jsonl; a whole campaign writes DIR/runs.jsonl; --merge combines the
 // run files of several directories into DIR/runs.jsonl. Every mode ends by writing
 // DIR/report.json.
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -33,6 +42,7 @@
 
 #include "campaign_stats.hpp"
 #include "closed_loop.hpp"
+#include "run_oracle.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -80,6 +90,55 @@ json run_record(int run, const ClosedLoopResult& r) {
                      {"mass_scale", d.mass_scale},
                      {"wind_scale", d.wind_scale}};
   return j;
+}
+
+json num_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+// The oracle's part of a run record: its verdict, and the solve when the optimizer judged.
+json oracle_record(const reentry::optimal::OracleResult& o) {
+  using reentry::optimal::to_string;
+  json j = {{"error", o.error}, {"feasible", o.feasible}, {"feasibility", to_string(o.feasibility)}, {"solved", o.solved}};
+  if (!o.solved) return j;
+  const auto& f = o.entry.figures;
+  const auto& s = o.entry.solution;
+  const std::pair<const char*, double> margins[] = {
+      {"heat_flux", f.margin_heat_flux}, {"load_factor", f.margin_load},   {"dynamic_pressure", f.margin_q},
+      {"q_alpha", f.margin_q_alpha},     {"taem_range", f.margin_range},   {"taem_altitude", f.margin_altitude},
+      {"taem_mach", f.margin_mach},      {"taem_flight_path", f.margin_gamma}, {"taem_heading", f.margin_heading}};
+  json m = json::object();
+  json binding = json::array();  // the constraints that set the common margin
+  for (const auto& [name, v] : margins) {
+    m[name] = num_or_null(v);
+    if (std::isfinite(v) && std::isfinite(f.margin) && v <= f.margin + 1e-3) binding.push_back(name);
+  }
+  j["optimizer_feasible"] = o.optimizer_feasible;
+  j["status"] = to_string(s.status);
+  j["ipopt_status"] = s.ipopt_status;
+  j["iterations"] = s.iterations;
+  j["solve_s"] = s.wall_s;
+  j["margin"] = num_or_null(f.margin);
+  j["binding"] = binding;
+  j["margins"] = m;
+  j["miss_km"] = f.miss_m * 1e-3;
+  j["tf_s"] = f.tf_s;
+  if (o.replayed) {
+    j["replay"] = {{"success", o.replay.verdict.success},
+                   {"event", reentry::truth::to_string(o.replay.summary.event)},
+                   {"miss_km", o.replay.verdict.taem_miss_m * 1e-3},
+                   {"end_point_diff_m", o.replay.final_position_diff_m},
+                   {"violations", o.replay.verdict.violations}};
+  }
+  return j;
+}
+
+json pullout_record(const reentry::tools::PulloutBound& b) {
+  const auto& m = b.maxima;
+  return {{"error", b.error},
+          {"heat_flux_kW_m2", m.qdot_Wpm2 * 1e-3},
+          {"q_kPa", m.q_Pa * 1e-3},
+          {"q_alpha_kPa_deg", m.q_alpha_Pa_rad * 1e-3 * kDeg},
+          {"g", m.n_g},
+          {"exceeded", b.exceeded}};
 }
 
 void progress(int done, int total, double elapsed_s) {
@@ -263,6 +322,69 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
     rep["pullout_bound"]["failure_modes_feasible"] = failure_modes(
         runs, [](const json& r) { return r.contains("pullout_bound") && r["pullout_bound"]["exceeded"].empty(); });
   }
+  // Feasibility oracle (--oracle): which runs any guidance could fly, and how ours does on them.
+  int with_oracle = 0, solved = 0, feasible = 0, feasible_successes = 0;
+  std::map<std::string, int> by_class;
+  std::map<std::string, int> binding_infeasible;
+  json feasible_but_pullout = json::array(), successes_not_found = json::array();
+  json optimizer_feasible_beyond_bound = json::array(), undecided_seeds = json::array();
+  std::vector<double> solve_times, margins;
+  for (const auto& r : runs) {
+    if (!r.contains("oracle")) continue;
+    const json& o = r["oracle"];
+    ++with_oracle;
+    ++by_class[o["feasibility"].get<std::string>()];
+    if (o["solved"].get<bool>()) {
+      ++solved;
+      solve_times.push_back(o["solve_s"].get<double>());
+      if (o["margin"].is_number()) margins.push_back(o["margin"].get<double>());
+      if (r["success"].get<bool>() && !o["optimizer_feasible"].get<bool>()) successes_not_found.push_back(r["seed"]);
+      if (!r["pullout_bound"]["exceeded"].empty() && o["optimizer_feasible"].get<bool>())
+        optimizer_feasible_beyond_bound.push_back(r["seed"]);
+    }
+    if (o["feasible"].get<bool>()) {
+      ++feasible;
+      if (r["success"].get<bool>()) ++feasible_successes;
+      if (r.contains("pullout_bound") && !r["pullout_bound"]["exceeded"].empty()) feasible_but_pullout.push_back(r["seed"]);
+    }
+    if (o["feasibility"] == "undecided" || o["feasibility"] == "optimizer_only") undecided_seeds.push_back(r["seed"]);
+    if (o["feasibility"] == "infeasible")
+      for (const auto& b : o["binding"]) ++binding_infeasible[b.get<std::string>()];
+  }
+  if (with_oracle > 0) {
+    const auto fci = reentry::tools::wilson_interval(feasible_successes, feasible);
+    json classes = json::object();
+    for (const auto& [k, v] : by_class) classes[k] = v;
+    json binding = json::object();
+    for (const auto& [k, v] : binding_infeasible) binding[k] = v;
+    rep["success_rate_feasible"] = feasible > 0 ? static_cast<double>(feasible_successes) / feasible : 0.0;
+    rep["oracle"] = {
+        {"runs", with_oracle},
+        {"solved", solved},
+        {"feasible", feasible},
+        {"feasible_successes", feasible_successes},
+        {"success_rate_feasible", feasible > 0 ? static_cast<double>(feasible_successes) / feasible : 0.0},
+        {"ci95_low", fci.low},
+        {"ci95_high", fci.high},
+        // Runs nothing decided (the solve stopped at its limits, or its open-loop flight fails
+        // while the collocated one has a margin): counted as feasible losses, the rate's floor.
+        {"undecided_seeds", undecided_seeds},
+        {"success_rate_feasible_undecided_as_feasible",
+         feasible + static_cast<int>(undecided_seeds.size()) > 0
+             ? static_cast<double>(feasible_successes) / (feasible + static_cast<double>(undecided_seeds.size()))
+             : 0.0},
+        {"feasibility", classes},
+        {"binding_constraints_of_infeasible_runs", binding},
+        {"margin", {{"p5", percentile(margins, 5)}, {"p50", percentile(margins, 50)}, {"p95", percentile(margins, 95)}}},
+        {"solve_s", {{"p50", percentile(solve_times, 50)}, {"p95", percentile(solve_times, 95)}, {"max", percentile(solve_times, 100)}}},
+        {"successes_the_optimizer_did_not_find_feasible", successes_not_found},
+        {"feasible_but_pullout_bound_exceeded", feasible_but_pullout},
+        {"optimizer_feasible_but_pullout_bound_exceeded", optimizer_feasible_beyond_bound},
+        // The guidance's real gap: the feasible runs it loses, by failure mode.
+        {"failure_modes_feasible", failure_modes(runs, [](const json& r) {
+           return r.contains("oracle") && r["oracle"]["feasible"].get<bool>();
+         })}};
+  }
   return rep;
 }
 
@@ -320,6 +442,27 @@ int write_report(const std::vector<std::string>& dirs, const std::string& out, c
                 100.0 * b["success_rate_upper_bound"].get<double>());
     print_modes("failure modes of the runs feasible at the pull-out", b["failure_modes_feasible"]);
   }
+  if (rep.contains("oracle")) {
+    const json& o = rep["oracle"];
+    std::printf("%s: oracle: %d/%d runs feasible (proven by a truth flight), %d successes among them: "
+                "success_rate_feasible %.1f %% (95 %% CI %.1f-%.1f %%)\n",
+                name.c_str(), o["feasible"].get<int>(), o["runs"].get<int>(), o["feasible_successes"].get<int>(),
+                100.0 * o["success_rate_feasible"].get<double>(), 100.0 * o["ci95_low"].get<double>(),
+                100.0 * o["ci95_high"].get<double>());
+    if (!o["undecided_seeds"].empty())
+      std::printf("%s: %zu runs undecided; counted as feasible losses, success_rate_feasible %.1f %%\n", name.c_str(),
+                  o["undecided_seeds"].size(), 100.0 * o["success_rate_feasible_undecided_as_feasible"].get<double>());
+    std::printf("%s: oracle classes:", name.c_str());
+    for (const auto& [k, v] : o["feasibility"].items()) std::printf(" %s %d", k.c_str(), v.get<int>());
+    if (o["solved"].get<int>() > 0)
+      std::printf("; %d solved, solve p50 %.1f s, max %.1f s", o["solved"].get<int>(), o["solve_s"]["p50"].get<double>(),
+                  o["solve_s"]["max"].get<double>());
+    std::printf("\n");
+    print_modes("failure modes of the feasible runs (the guidance's gap)", o["failure_modes_feasible"]);
+    if (!o["feasible_but_pullout_bound_exceeded"].empty())
+      std::printf("%s: BUG: %zu runs proven feasible exceed a limit at the wings-level pull-out\n", name.c_str(),
+                  o["feasible_but_pullout_bound_exceeded"].size());
+  }
   return 0;
 }
 
@@ -330,7 +473,10 @@ int main(int argc, char** argv) {
   std::string mission_arg, out, shard, dispersion_set = "reference";
   int runs = 0, jobs = 0;
   std::uint64_t seed = 1;
-  bool nominal = false, trace = false, pullout_bound = false, knows_vehicle = false;
+  bool nominal = false, trace = false, pullout_bound = false, knows_vehicle = false, oracle = false,
+       oracle_all = false;
+  int oracle_segments = reentry::optimal::EntrySolveOptions{}.segments;
+  double oracle_max_s = reentry::optimal::EntrySolveOptions{}.solver.max_wall_s;
   std::vector<std::string> merge;
   app.add_option("--mission", mission_arg, "mission name or TOML file");
   app.add_option("--runs", runs, "number of runs of the whole campaign");
@@ -347,6 +493,12 @@ int main(int argc, char** argv) {
                "also fly each run's entry descent wings level at alpha_max (the physics bound of the first pull-out)");
   app.add_flag("--guidance-knows-vehicle", knows_vehicle,
                "diagnosis: give the guidance each run's drawn C_L, C_D and mass (what their ignorance costs)");
+  app.add_flag("--oracle", oracle,
+               "also solve each run's maximum-margin problem on its own truth models (feasible runs, margins)");
+  app.add_flag("--oracle-all", oracle_all,
+               "oracle: solve every run, also those a guidance success or the pull-out bound decides (checks both)");
+  app.add_option("--oracle-segments", oracle_segments, "oracle: Hermite-Simpson segments")->check(CLI::Range(10, 1000));
+  app.add_option("--oracle-max-time", oracle_max_s, "oracle: wall-clock limit of one solve [s]")->check(CLI::PositiveNumber);
   app.add_option("--merge", merge, "combine the run files of these directories into --out (runs.jsonl, report.json)");
   CLI11_PARSE(app, argc, argv);
 
@@ -364,6 +516,10 @@ int main(int argc, char** argv) {
   }
   if (mission_arg.empty() || runs <= 0) {
     std::fprintf(stderr, "reentry_mc: --mission and --runs N (N >= 1) are required (or --merge)\n");
+    return 2;
+  }
+  if (oracle && (trace || knows_vehicle)) {
+    std::fprintf(stderr, "reentry_mc: --oracle flies the guidance as in flight: not with --trace or --guidance-knows-vehicle\n");
     return 2;
   }
   int shard_i = 0, shard_k = 1;
@@ -398,35 +554,98 @@ int main(int argc, char** argv) {
   std::atomic<int> done{0};
   std::mutex progress_mutex;
   const auto t0 = std::chrono::steady_clock::now();
+  // One run's record.
+  auto compute = [&](std::size_t i) {
+    const int r = mine[i];
+    const std::string trace_csv =
+        trace ? (fs::path(out) / "traces" / ("run_" + std::to_string(seed + r) + ".csv")).string() : std::string();
+    json rec;
+    if (oracle) {
+      reentry::optimal::OracleOptions oo;
+      oo.solve.segments = oracle_segments;
+      oo.solve.solver.max_wall_s = oracle_max_s;
+      oo.solve_decided = oracle_all;
+      const reentry::optimal::OracleResult o = reentry::optimal::run_oracle(loaded.mission, seed + r, !nominal, oo);
+      rec = run_record(r, o.flown);
+      rec["oracle"] = oracle_record(o);
+      rec["feasible"] = o.feasible;
+      rec["pullout_bound"] = pullout_record(o.pullout);
+    } else {
+      const ClosedLoopResult res = reentry::tools::run_closed_loop(loaded.mission, seed + r, !nominal, trace_csv, knows_vehicle);
+      rec = run_record(r, res);
+    }
+    rec["mission"] = loaded.mission.name;
+    rec["dispersions"] = set_name;
+    if (knows_vehicle) rec["guidance_knows_vehicle"] = true;
+    if (pullout_bound && !oracle) rec["pullout_bound"] = pullout_record(
+        reentry::tools::wings_level_pullout_bound(loaded.mission, seed + r, !nominal));
+    return rec;
+  };
   auto worker = [&] {
     for (std::size_t i = next++; i < mine.size(); i = next++) {
-      const int r = mine[i];
-      const std::string trace_csv =
-          trace ? (fs::path(out) / "traces" / ("run_" + std::to_string(seed + r) + ".csv")).string() : std::string();
-      const ClosedLoopResult res = reentry::tools::run_closed_loop(loaded.mission, seed + r, !nominal, trace_csv, knows_vehicle);
-      records[i] = run_record(r, res);
-      records[i]["mission"] = loaded.mission.name;
-      records[i]["dispersions"] = set_name;
-      if (knows_vehicle) records[i]["guidance_knows_vehicle"] = true;
-      if (pullout_bound) {
-        const auto b = reentry::tools::wings_level_pullout_bound(loaded.mission, seed + r, !nominal);
-        const auto& m = b.maxima;
-        records[i]["pullout_bound"] = {{"error", b.error},
-                                       {"heat_flux_kW_m2", m.qdot_Wpm2 * 1e-3},
-                                       {"q_kPa", m.q_Pa * 1e-3},
-                                       {"q_alpha_kPa_deg", m.q_alpha_Pa_rad * 1e-3 * kDeg},
-                                       {"g", m.n_g},
-                                       {"exceeded", b.exceeded}};
-      }
+      records[i] = compute(i);
       const int d = ++done;
       std::lock_guard<std::mutex> lock(progress_mutex);
       progress(d, static_cast<int>(mine.size()),
                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
   };
-  std::vector<std::thread> pool;
-  for (int j = 0; j < std::min<int>(jobs, static_cast<int>(mine.size())); ++j) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  const int workers = std::min<int>(jobs, static_cast<int>(mine.size()));
+  if (oracle && workers > 1) {
+    // IPOPT's linear solver (MUMPS 5.5, sequential build) is not thread-safe: two solves in
+    // one process crash in DMUMPS_LOAD_INIT. Oracle campaigns run their jobs as processes
+    // (forked before any thread exists), each on every workers-th run, writing its records
+    // to a part file that this process collects.
+    fs::create_directories(out);
+    std::vector<pid_t> children;
+    for (int k = 0; k < workers; ++k) {
+      const pid_t pid = fork();
+      if (pid < 0) {
+        std::perror("reentry_mc: fork");
+        return 2;
+      }
+      if (pid == 0) {
+        std::ofstream part(fs::path(out) / (".oracle_part_" + std::to_string(k) + ".jsonl"));
+        int mine_done = 0;
+        for (std::size_t i = static_cast<std::size_t>(k); i < mine.size(); i += static_cast<std::size_t>(workers)) {
+          part << json{{"index", i}, {"record", compute(i)}}.dump() << "\n" << std::flush;
+          ++mine_done;
+          if (k == 0)  // the first process reports for all (they share the runs evenly)
+            progress(std::min<int>(mine_done * workers, static_cast<int>(mine.size())), static_cast<int>(mine.size()),
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        }
+        part.close();
+        std::_Exit(part ? 0 : 3);
+      }
+      children.push_back(pid);
+    }
+    bool ok = true;
+    for (pid_t pid : children) {
+      int status = 0;
+      if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) ok = false;
+    }
+    for (int k = 0; k < workers; ++k) {
+      const fs::path part = fs::path(out) / (".oracle_part_" + std::to_string(k) + ".jsonl");
+      std::ifstream in(part);
+      std::string line;
+      while (std::getline(in, line)) {
+        const json j = json::parse(line, nullptr, false);
+        if (j.is_discarded() || !j.contains("index")) continue;
+        records[j["index"].get<std::size_t>()] = j["record"];
+      }
+      std::error_code ec;
+      fs::remove(part, ec);
+    }
+    for (const auto& rec : records) ok = ok && !rec.is_null();
+    if (!ok) {
+      std::fprintf(stderr, "reentry_mc: an oracle worker process failed (records missing)\n");
+      return 3;
+    }
+  } else {
+    std::vector<std::thread> pool;
+    for (int j = 0; j < workers; ++j) pool.emplace_back(worker);
+    for (auto& t : pool) t.join();
+  }
 
   fs::create_directories(out);
   const std::string file = shard.empty() ? "runs.jsonl"
@@ -434,5 +653,7 @@ int main(int argc, char** argv) {
   std::ofstream f(fs::path(out) / file);
   for (const auto& rec : records) f << rec.dump() << "\n";
   f.close();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("%s: campaign wall time %.0f s (%zu runs, %d jobs)\n", loaded.mission.name.c_str(), wall, mine.size(), jobs);
   return write_report({out}, out, loaded.mission.name);
 }

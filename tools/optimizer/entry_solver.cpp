@@ -1,0 +1,268 @@
+#include "entry_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace reentry::optimal {
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Index of the sample interval containing t (samples increasing in time).
+size_t interval(const std::vector<double>& t, double tq, size_t hint) {
+  size_t i = std::min(hint, t.size() - 2);
+  while (i > 0 && t[i] > tq) --i;
+  while (i + 2 < t.size() && t[i + 1] < tq) ++i;
+  return i;
+}
+}  // namespace
+
+Trajectory guess_from_flown(const std::vector<FlownSample>& flown, const Mesh& mesh) {
+  Trajectory g;
+  g.tau = mesh.point_tau();
+  const double tf = flown.back().t_s;
+  g.p = {tf, 0.0};
+  std::vector<double> t(flown.size());
+  for (size_t i = 0; i < flown.size(); ++i) t[i] = flown[i].t_s;
+  size_t hint = 0;
+  for (double s : g.tau) {
+    const double tq = s * tf;
+    if (flown.size() < 2) {
+      for (int i = 0; i < 6; ++i) g.x.push_back(flown.front().y[static_cast<size_t>(i)]);
+      g.u.push_back(flown.front().alpha_rad);
+      g.u.push_back(flown.front().sigma_rad);
+      continue;
+    }
+    hint = interval(t, tq, hint);
+    const FlownSample& a = flown[hint];
+    const FlownSample& b = flown[hint + 1];
+    const double w = b.t_s > a.t_s ? std::clamp((tq - a.t_s) / (b.t_s - a.t_s), 0.0, 1.0) : 0.0;
+    for (int i = 0; i < 6; ++i) g.x.push_back(a.y[static_cast<size_t>(i)] + w * (b.y[static_cast<size_t>(i)] - a.y[static_cast<size_t>(i)]));
+    // Commands are held between ticks: take the one in effect.
+    const FlownSample& c = w < 1.0 ? a : b;
+    g.u.push_back(c.alpha_rad);
+    g.u.push_back(c.sigma_rad);
+  }
+  return g;
+}
+
+Trajectory consistent_guess_from_flown(truth::Simulator& sim, const std::vector<FlownSample>& flown, const Mesh& mesh) {
+  Trajectory raw = guess_from_flown(flown, mesh);
+  const int n = raw.points();
+  const double tf = raw.p[0];
+  // Mean flown command over each point's share [t_{j-1/2}, t_{j+1/2}] of the time line.
+  for (int j = 0; j < n; ++j) {
+    const double a = j == 0 ? 0.0 : 0.5 * (raw.tau[static_cast<size_t>(j - 1)] + raw.tau[static_cast<size_t>(j)]) * tf;
+    const double b = j == n - 1 ? tf : 0.5 * (raw.tau[static_cast<size_t>(j)] + raw.tau[static_cast<size_t>(j + 1)]) * tf;
+    double sum_a = 0.0, sum_s = 0.0, w = 0.0;
+    for (size_t i = 0; i + 1 < flown.size(); ++i) {
+      const double lo = std::max(a, flown[i].t_s), hi = std::min(b, flown[i + 1].t_s);
+      if (hi <= lo) continue;
+      sum_a += (hi - lo) * flown[i].alpha_rad;
+      sum_s += (hi - lo) * flown[i].sigma_rad;
+      w += hi - lo;
+    }
+    if (w > 0.0) {
+      raw.u[static_cast<size_t>(2 * j)] = sum_a / w;
+      raw.u[static_cast<size_t>(2 * j + 1)] = sum_s / w;
+    }
+  }
+  // Piecewise-linear controls (the midpoint the mean of its nodes, as linear_controls ties it).
+  for (int j = 1; j + 1 < n; j += 2)
+    for (int c = 0; c < 2; ++c)
+      raw.u[static_cast<size_t>(2 * j + c)] =
+          0.5 * (raw.u[static_cast<size_t>(2 * (j - 1) + c)] + raw.u[static_cast<size_t>(2 * (j + 1) + c)]);
+  // Fly it open loop and take the states of that flight.
+  const double rate = sim.mission().guidance.gnc_rate_hz > 0.0 ? sim.mission().guidance.gnc_rate_hz : 10.0;
+  const double dt = 1.0 / rate;
+  std::vector<FlownSample> open;
+  const auto max_ticks = static_cast<long long>(std::ceil(sim.settings().time_limit_s / dt)) + 2;
+  for (long long k = 0; k < max_ticks && !sim.finished(); ++k) {
+    double al = 0.0, si = 0.0;
+    control_at(raw, (static_cast<double>(k) + 0.5) * dt, &al, &si);
+    sim.set_command(al, si);
+    FlownSample f;
+    f.t_s = sim.time_s();
+    for (size_t i = 0; i < 6; ++i) f.y[i] = sim.state()[i];
+    f.alpha_rad = al;
+    f.sigma_rad = si;
+    open.push_back(f);
+    sim.advance_to(static_cast<double>(k + 1) * dt);
+  }
+  if (sim.event() != truth::SimEvent::kTaemEnergy || open.size() < 2) return raw;
+  FlownSample last = open.back();
+  last.t_s = sim.time_s();
+  for (size_t i = 0; i < 6; ++i) last.y[i] = sim.state()[i];
+  open.push_back(last);
+  Trajectory g = guess_from_flown(open, mesh);
+  // Controls as functions of time on the new t_f.
+  for (int j = 0; j < n; ++j) control_at(raw, g.tau[static_cast<size_t>(j)] * g.p[0], &g.u[static_cast<size_t>(2 * j)],
+                                          &g.u[static_cast<size_t>(2 * j + 1)]);
+  return g;
+}
+
+EntryFigures evaluate_figures(const EntryProblem& pb, const Trajectory& tr) {
+  EntryFigures f;
+  const int n = tr.points();
+  if (n == 0) return f;
+  f.tf_s = tr.p[0];
+  f.margin = pb.mode() == EntryMode::kMaxMargin ? -tr.p[1] : kNaN;
+  const config::PathConstraints& c = pb.mission().constraints;
+  const config::TaemInterface& tm = pb.mission().taem;
+  f.max_altitude_m = -std::numeric_limits<double>::infinity();
+  for (int j = 0; j < n; ++j) {
+    const double* x = &tr.x[static_cast<size_t>(j * 6)];
+    const double* u = &tr.u[static_cast<size_t>(j * 2)];
+    const truth::PointOutputs<double> o = pb.model().evaluate(tr.time(j), truth::scalar::Vec3<double>(x[0], x[1], x[2]),
+                                                              truth::scalar::Vec3<double>(x[3], x[4], x[5]), u[0], u[1], true);
+    f.max_heat_flux_Wpm2 = std::max(f.max_heat_flux_Wpm2, o.qdot);
+    f.max_load_g = std::max(f.max_load_g, o.n_g);
+    f.max_q_Pa = std::max(f.max_q_Pa, o.q);
+    f.max_q_alpha_Pa_rad = std::max(f.max_q_alpha_Pa_rad, std::fabs(o.q * o.alpha));
+    f.max_altitude_m = std::max(f.max_altitude_m, o.h_m);
+  }
+  const double* xf = &tr.x[static_cast<size_t>((n - 1) * 6)];
+  const double* uf = &tr.u[static_cast<size_t>((n - 1) * 2)];
+  const auto fin = pb.final_quantities(tr.time(n - 1), xf, uf);
+  const double re = truth::EarthConstants::kEquatorialRadius_m;
+  f.miss_m = 2.0 * re * std::asin(std::min(1.0, 0.5 * std::sqrt(fin.chord2)));
+  f.along_m = fin.along;
+  f.cross_m = fin.cross;
+  f.altitude_err_m = fin.h - tm.altitude_m;
+  f.mach = fin.mach;
+  f.gamma_rad = fin.gamma;
+  f.heading_err_rad = std::atan2(fin.heading_sin, fin.heading_cos);
+  {
+    const truth::PointOutputs<double> o = pb.model().evaluate(tr.time(n - 1), truth::scalar::Vec3<double>(xf[0], xf[1], xf[2]),
+                                                              truth::scalar::Vec3<double>(xf[3], xf[4], xf[5]), uf[0], uf[1], true);
+    f.final_lat_rad = o.lat;
+    f.final_lon_rad = o.lon;
+  }
+  auto path_margin = [](double v, double lim) { return std::isfinite(lim) && lim > 0.0 ? 1.0 - v / lim : kNaN; };
+  f.margin_heat_flux = path_margin(f.max_heat_flux_Wpm2, c.heat_flux_max_Wpm2);
+  f.margin_load = path_margin(f.max_load_g, c.load_factor_max_g);
+  f.margin_q = path_margin(f.max_q_Pa, c.dynamic_pressure_max_Pa);
+  f.margin_q_alpha = path_margin(f.max_q_alpha_Pa_rad, c.q_alpha_max_Pa_rad);
+  auto band_margin = [](double err, double tol) { return std::isfinite(tol) && tol > 0.0 ? 1.0 - std::fabs(err) / tol : kNaN; };
+  f.margin_range = band_margin(f.miss_m, tm.range_tol_m);
+  f.margin_altitude = band_margin(f.altitude_err_m, tm.altitude_tol_m);
+  f.margin_mach = tm.mach_target > 0.0 ? band_margin(f.mach - tm.mach_target, tm.mach_tol) : kNaN;
+  f.margin_gamma = band_margin(f.gamma_rad - tm.flight_path_rad, tm.flight_path_tol_rad);
+  f.margin_heading = band_margin(f.heading_err_rad, tm.heading_tol_rad);
+  constexpr double kSlack = 1e-6;
+  bool ok = true;
+  for (double m : {f.margin_heat_flux, f.margin_load, f.margin_q, f.margin_q_alpha})
+    if (std::isfinite(m)) ok = ok && m >= -kSlack;
+  for (double m : {f.margin_range, f.margin_altitude, f.margin_mach, f.margin_gamma, f.margin_heading})
+    if (std::isfinite(m)) ok = ok && m >= -kSlack;
+  f.all_satisfied = ok;
+  return f;
+}
+
+EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Trajectory& guess,
+                        const EntrySolveOptions& options, double downrange_m) {
+  EntryResult r;
+  r.mode = mode;
+  if (guess.points() != 2 * options.segments + 1 || guess.p.size() != 2) {
+    r.error = "initial guess does not match the mesh";
+    return r;
+  }
+  const EntryProblem pb(sim, mode, guess.p[0], downrange_m);
+  Trajectory start = guess;
+  if (mode == EntryMode::kMaxMargin) {
+    // Start s at the guess's largest normalised violation, so the margin rows start feasible.
+    const EntryFigures g = evaluate_figures(pb, guess);
+    double worst = -1.0;
+    for (double m : {g.margin_heat_flux, g.margin_load, g.margin_q, g.margin_q_alpha, g.margin_altitude, g.margin_mach,
+                     g.margin_gamma, g.margin_heading})
+      if (std::isfinite(m)) worst = std::max(worst, -m);
+    if (std::isfinite(g.margin_range)) worst = std::max(worst, -g.margin_range);
+    start.p[1] = std::clamp(worst + 0.05, -0.95, 99.0);
+  } else if (mode == EntryMode::kMinMiss) {
+    const EntryFigures g = evaluate_figures(pb, guess);
+    start.p[1] = std::clamp(g.miss_m / pb.mission().taem.range_tol_m - 1.0 + 0.05, -0.9, 1e4);
+  } else {
+    start.p[1] = 0.0;
+  }
+  const Mesh mesh{[&] {
+    std::vector<double> nodes;
+    for (size_t j = 0; j < guess.tau.size(); j += 2) nodes.push_back(guess.tau[j]);
+    return nodes;
+  }()};
+  r.solution = solve(pb, mesh, start, options.solver);
+  r.figures = evaluate_figures(pb, r.solution.trajectory);
+  return r;
+}
+
+std::vector<TrackPoint> track(const EntryProblem& pb, const Trajectory& tr) {
+  std::vector<TrackPoint> out;
+  for (int j = 0; j < tr.points(); ++j) {
+    const double* x = &tr.x[static_cast<size_t>(j * 6)];
+    const double* u = &tr.u[static_cast<size_t>(j * 2)];
+    const truth::PointOutputs<double> o = pb.model().evaluate(tr.time(j), truth::scalar::Vec3<double>(x[0], x[1], x[2]),
+                                                              truth::scalar::Vec3<double>(x[3], x[4], x[5]), u[0], u[1], true);
+    out.push_back({tr.time(j), o.lat, o.lon, o.h_m, o.V, o.gamma, o.chi, o.mach, o.qdot, o.n_g, o.q, u[0], u[1]});
+  }
+  return out;
+}
+
+void control_at(const Trajectory& tr, double t, double* alpha, double* sigma) {
+  const int n = tr.points();
+  if (t <= tr.time(0)) {
+    *alpha = tr.u[0];
+    *sigma = tr.u[1];
+    return;
+  }
+  if (t >= tr.time(n - 1)) {
+    *alpha = tr.u[static_cast<size_t>(2 * (n - 1))];
+    *sigma = tr.u[static_cast<size_t>(2 * (n - 1) + 1)];
+    return;
+  }
+  int lo = 0, hi = n - 1;
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    if (tr.time(mid) <= t) lo = mid; else hi = mid;
+  }
+  const double w = (t - tr.time(lo)) / (tr.time(hi) - tr.time(lo));
+  *alpha = tr.u[static_cast<size_t>(2 * lo)] + w * (tr.u[static_cast<size_t>(2 * hi)] - tr.u[static_cast<size_t>(2 * lo)]);
+  *sigma = tr.u[static_cast<size_t>(2 * lo + 1)] + w * (tr.u[static_cast<size_t>(2 * hi + 1)] - tr.u[static_cast<size_t>(2 * lo + 1)]);
+}
+
+ReplayResult replay_open_loop(truth::Simulator& sim, const EntryProblem& pb, const Trajectory& tr) {
+  ReplayResult out;
+  const double rate = sim.mission().guidance.gnc_rate_hz > 0.0 ? sim.mission().guidance.gnc_rate_hz : 10.0;
+  const double dt = 1.0 / rate;
+  truth::CommandRateMaxima rates;
+  double a_prev = 0.0, s_prev = 0.0;
+  const auto max_ticks = static_cast<long long>(std::ceil(sim.settings().time_limit_s / dt)) + 2;
+  for (long long k = 0; k < max_ticks && !sim.finished(); ++k) {
+    double a = 0.0, s = 0.0;
+    control_at(tr, (static_cast<double>(k) + 0.5) * dt, &a, &s);
+    if (k > 0) {
+      rates.alpha_rate_radps = std::max(rates.alpha_rate_radps, std::fabs(a - a_prev) / dt);
+      rates.sigma_rate_radps = std::max(rates.sigma_rate_radps, std::fabs(s - s_prev) / dt);
+    }
+    a_prev = a;
+    s_prev = s;
+    sim.set_command(a, s);
+    sim.advance_to(static_cast<double>(k + 1) * dt);
+  }
+  out.summary = sim.summary();
+  out.verdict = truth::judge_mission(sim.mission(), out.summary, rates);
+  const int n = tr.points();
+  const double* xf = &tr.x[static_cast<size_t>((n - 1) * 6)];
+  const truth::scalar::Vec3<double> r_sol = truth::rotation_I_to_R(tr.time(n - 1)) * truth::scalar::Vec3<double>(xf[0], xf[1], xf[2]);
+  const auto& y = sim.state();
+  const truth::scalar::Vec3<double> r_rep = truth::rotation_I_to_R(sim.time_s()) * truth::scalar::Vec3<double>(y[0], y[1], y[2]);
+  out.final_position_diff_m = (r_rep - r_sol).norm();
+  out.final_time_diff_s = sim.time_s() - tr.time(n - 1);
+  const EntryFigures f = evaluate_figures(pb, tr);
+  const auto& fs = out.summary.final_state;
+  out.final_altitude_diff_m = fs.h_m - (f.altitude_err_m + sim.mission().taem.altitude_m);
+  out.final_mach_diff = fs.mach - f.mach;
+  out.final_heading_diff_rad = truth::wrap_pi(fs.chi_rad - (sim.mission().taem.heading_rad + f.heading_err_rad));
+  return out;
+}
+
+}  // namespace reentry::optimal

@@ -1,0 +1,113 @@
+// Solving a run's entry problem: warm start from a flown trajectory, the figures of a solution
+// (constraint maxima and margins, the TAEM miss as the referee computes it), and the
+// independent check of the optimizer's dynamics: the optimal control history flown open loop
+// in the truth simulator.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "dynamics/simulator.hpp"
+#include "entry_problem.hpp"
+#include "evaluation/mission_verdict.hpp"
+#include "hermite_simpson.hpp"
+
+namespace reentry::optimal {
+
+/// One sample of a flown trajectory: the simulator state and the command in effect after t.
+struct FlownSample {
+  double t_s = 0.0;
+  std::array<double, 6> y{};  // r_I [m], v_I [m/s]
+  double alpha_rad = 0.0, sigma_rad = 0.0;
+};
+
+/// Settings of an entry solve (defaults: the figures in tools/optimizer/README.md).
+struct EntrySolveOptions {
+  // Hermite-Simpson segments, uniform in time: 100 (15-25 s) keeps the open-loop replay of a
+  // solution within tens to hundreds of metres of the collocated end point; 60-80 lose
+  // kilometres on HORUS.
+  int segments = 100;
+  SolverOptions solver = default_solver();
+  /// The truth models interpolate tables bilinearly: linear in alpha (and Mach) inside each
+  /// cell, so the exact Hessian has no curvature where the real curvature sits (the cell
+  /// edges) and IPOPT's Newton steps overshoot and cycle (measured: 3 of 3 nominal missions
+  /// fail or stall at 300 iterations); the limited-memory quasi-Newton Hessian, built from
+  /// secants across cells, converges in all of them. Piecewise-linear controls: the free
+  /// Hermite-Simpson midpoint control zig-zags and its open-loop replay missed by 150-350 km.
+  static SolverOptions default_solver() {
+    SolverOptions s;
+    s.exact_hessian = false;
+    s.linear_controls = true;
+    s.max_iterations = 1000;
+    s.max_wall_s = 120.0;
+    return s;
+  }
+};
+
+/// A solution's figures, in the referee's terms.
+struct EntryFigures {
+  double tf_s = 0.0;
+  double margin = 0.0;                    // -s (kMaxMargin): common margin, fraction of each limit/tolerance; NaN otherwise
+  double miss_m = 0.0, along_m = 0.0, cross_m = 0.0;
+  double altitude_err_m = 0.0, mach = 0.0, gamma_rad = 0.0, heading_err_rad = 0.0;
+  double final_lat_rad = 0.0, final_lon_rad = 0.0;  // geocentric, of the final point
+  double max_heat_flux_Wpm2 = 0.0, max_load_g = 0.0, max_q_Pa = 0.0, max_q_alpha_Pa_rad = 0.0;
+  double max_altitude_m = 0.0;
+  /// Margins as fractions (1 - value / limit, or 1 - |error| / tolerance); NaN: not constrained.
+  double margin_heat_flux = 0.0, margin_load = 0.0, margin_q = 0.0, margin_q_alpha = 0.0;
+  double margin_range = 0.0, margin_altitude = 0.0, margin_mach = 0.0, margin_gamma = 0.0, margin_heading = 0.0;
+  /// Every constraint within its limit (with 1e-6 relative slack on the path constraints) at the
+  /// collocation points.
+  bool all_satisfied = false;
+};
+
+struct EntryResult {
+  std::string error;           // set when the problem could not be set up
+  EntryMode mode = EntryMode::kMinMiss;
+  Solution solution;
+  EntryFigures figures;
+};
+
+/// The initial guess on `mesh` interpolated (linearly in time) from a flown trajectory that
+/// ends at the TAEM event: t_f = the last sample's time.
+Trajectory guess_from_flown(const std::vector<FlownSample>& flown, const Mesh& mesh);
+
+/// A dynamically consistent initial guess from a flown trajectory: the flown command averaged
+/// over each collocation point's share of the mesh, flown open loop (linear between the points,
+/// as the transcription's controls) in `sim` (a fresh simulator of the same run) to the TAEM
+/// event; the states are that flight's. So the guess violates the collocation equations only by
+/// their discretisation error, and IPOPT starts next to a trajectory instead of ~100 m from
+/// one. Falls back to guess_from_flown when the open-loop flight ends otherwise.
+Trajectory consistent_guess_from_flown(truth::Simulator& sim, const std::vector<FlownSample>& flown, const Mesh& mesh);
+
+/// Solves one run's problem. `sim` is the run's simulator right after create().
+EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Trajectory& guess,
+                        const EntrySolveOptions& options, double downrange_m = 0.0);
+
+/// Figures of a trajectory of `problem` (double evaluation of the same functions).
+EntryFigures evaluate_figures(const EntryProblem& problem, const Trajectory& trajectory);
+
+/// The trajectory's points in the referee's terms (one per collocation point).
+struct TrackPoint {
+  double t_s, lat_rad, lon_rad, h_m, V_mps, gamma_rad, chi_rad, mach, qdot_Wpm2, n_g, q_Pa, alpha_rad, sigma_rad;
+};
+std::vector<TrackPoint> track(const EntryProblem& problem, const Trajectory& trajectory);
+
+/// The control history of a solution at time t: linear between the collocation points (which
+/// keeps the rate limits), held outside.
+void control_at(const Trajectory& trajectory, double t_s, double* alpha_rad, double* sigma_rad);
+
+/// The optimal control history flown open loop in a fresh truth simulator of the same run
+/// (`sim` right after create()): commands at the mission's GNC rate, each the mean of the
+/// solution's control over its tick.
+struct ReplayResult {
+  truth::RunSummary summary;
+  truth::MissionVerdict verdict;
+  double final_position_diff_m = 0.0;  // |r_R(replay) - r_R(solution)| at the TAEM energy
+  double final_time_diff_s = 0.0;
+  double final_altitude_diff_m = 0.0, final_mach_diff = 0.0, final_heading_diff_rad = 0.0;
+};
+ReplayResult replay_open_loop(truth::Simulator& sim, const EntryProblem& problem, const Trajectory& solution);
+
+}  // namespace reentry::optimal

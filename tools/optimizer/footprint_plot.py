@@ -1,0 +1,94 @@
+#!/usr/bin/env python3
+"""Plots the reachable TAEM footprint written by reentry_optimal --footprint.
+
+DIR/footprint.json (the extremal solves) and DIR/footprint_tracks.csv (their ground tracks) ->
+DIR/footprint.png: left, the ground tracks and the footprint's boundary on a latitude/longitude
+map with the entry point and the aim point; right, the boundary in the arrival-line frame of the
+aim point (along > 0 long, across > 0 right) with the TAEM range tolerance."""
+import csv
+import json
+import math
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def boundary(points):
+    """The reached extremal points (flown open loop within every path limit) in order around the footprint: max crossrange from the far
+    end inwards, then min crossrange from the near end outwards."""
+    ok = [p for p in points if p.get("replay", {}).get("reached")]
+    for p in ok:  # the point the open-loop flight reached (the solve's own end point when converged)
+        p["along_km"], p["cross_km"] = p["replay"]["along_km"], p["replay"]["cross_km"]
+    left = sorted([p for p in ok if p["mode"] == "max_crossrange"], key=lambda p: -p["downrange_target_km"])
+    right = sorted([p for p in ok if p["mode"] == "min_crossrange"], key=lambda p: p["downrange_target_km"])
+    ring = left + right
+    return ring + ring[:1] if ring else ring
+
+
+def unwrap(lon, ref):
+    """Longitude within 180 deg of ref (tracks crossing 0 or 180 deg stay continuous)."""
+    return ref + (lon - ref + 180.0) % 360.0 - 180.0
+
+
+def main(out_dir):
+    out = Path(out_dir)
+    doc = json.loads((out / "footprint.json").read_text())
+    # Group rows into tracks: a new track starts when t_s goes back to its start.
+    tracks = []
+    with open(out / "footprint_tracks.csv") as f:
+        prev_t = None
+        for row in csv.DictReader(f):
+            t = float(row["t_s"])
+            if prev_t is None or t < prev_t:
+                tracks.append({"label": row["label"], "lat": [], "lon": []})
+            tracks[-1]["lat"].append(float(row["lat_deg"]))
+            tracks[-1]["lon"].append(float(row["lon_deg"]))
+            prev_t = t
+    entry, aim = doc["entry_lon_deg"], doc["aim_lon_deg"]
+    ref = entry + 0.5 * (unwrap(aim, entry) - entry)  # midway between entry and aim
+    for tr in tracks:
+        tr["lon"] = [unwrap(x, ref) for x in tr["lon"]]
+    ring = boundary(doc["points"])
+    for p in ring:
+        p["final_lon_deg"] = unwrap(p["final_lon_deg"], ref)
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5.5))
+    for tr in tracks:
+        guid = tr["label"] == "guidance_nominal"
+        ax.plot(tr["lon"], tr["lat"], color="tab:red" if guid else "0.6", lw=1.6 if guid else 0.7,
+                label="guidance (nominal flight)" if guid else None, zorder=3 if guid else 1)
+    if ring:
+        ax.plot([p["final_lon_deg"] for p in ring], [p["final_lat_deg"] for p in ring], "b.-", lw=1.2,
+                label="reachable TAEM footprint")
+    ax.plot(unwrap(entry, ref), doc["entry_lat_deg"], "k^", ms=8, label="entry")
+    ax.plot(unwrap(aim, ref), doc["aim_lat_deg"], "r*", ms=14, label="aim point")
+    ax.set_xlabel("longitude [deg]")
+    ax.set_ylabel("latitude (geocentric) [deg]")
+    ax.set_title(f"{doc['mission']}: extremal trajectories")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    if ring:
+        bx.fill([p["along_km"] for p in ring], [p["cross_km"] for p in ring], color="tab:blue", alpha=0.15)
+        bx.plot([p["along_km"] for p in ring], [p["cross_km"] for p in ring], "b.-", lw=1.2, label="footprint boundary")
+    tol = doc["range_tol_km"]
+    a = [2 * math.pi * k / 100 for k in range(101)]
+    bx.plot([tol * math.cos(x) for x in a], [tol * math.sin(x) for x in a], "r-", lw=1, label=f"range tolerance {tol:g} km")
+    bx.plot(0, 0, "r*", ms=14, label="aim point")
+    bx.set_xlabel("along the arrival line [km] (> 0 long)")
+    bx.set_ylabel("across [km] (> 0 right)")
+    bx.set_title(f"footprint at the TAEM energy ({doc['segments']} segments, solve median {doc['solve_wall_s_median']:.0f} s)")
+    bx.grid(True, alpha=0.3)
+    bx.axis("equal")
+    bx.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out / "footprint.png", dpi=110)
+    print(f"footprint plot: {out / 'footprint.png'}")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit("usage: footprint_plot.py DIR")
+    main(sys.argv[1])
