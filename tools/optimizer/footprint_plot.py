@@ -72,14 +72,16 @@ def main(out_dir):
     ax.legend(fontsize=8)
     if ring:
         bx.fill([p["along_km"] for p in ring], [p["cross_km"] for p in ring], color="tab:blue", alpha=0.15)
-        bx.plot([p["along_km"] for p in ring], [p["cross_km"] for p in ring], "b.-", lw=1.2, label="footprint boundary")
+        bx.plot([p["along_km"] for p in ring], [p["cross_km"] for p in ring], "b.-", lw=1.2, label="reached footprint")
     tol = doc["range_tol_km"]
     a = [2 * math.pi * k / 100 for k in range(101)]
     bx.plot([tol * math.cos(x) for x in a], [tol * math.sin(x) for x in a], "r-", lw=1, label=f"range tolerance {tol:g} km")
     bx.plot(0, 0, "r*", ms=14, label="aim point")
     bx.set_xlabel("along the arrival line [km] (> 0 long)")
     bx.set_ylabel("across [km] (> 0 right)")
-    bx.set_title(f"footprint at the TAEM energy ({doc['segments']} segments, solve median {doc['solve_wall_s_median']:.0f} s)")
+    n = len(doc["points"])
+    n_conv = sum(p["status"] in ("optimal", "acceptable") for p in doc["points"])
+    bx.set_title(f"TAEM points reached open loop ({n_conv} of {n} solves converged, the rest inner bounds)", fontsize=10)
     bx.grid(True, alpha=0.3)
     bx.axis("equal")
     bx.legend(fontsize=8)
