@@ -55,6 +55,7 @@ EntryProblem::EntryProblem(const truth::Simulator& sim, EntryMode mode, double t
 
   const bool footprint = mode == EntryMode::kMaxDownrange || mode == EntryMode::kMinDownrange ||
                          mode == EntryMode::kMaxCrossrange || mode == EntryMode::kMinCrossrange;
+  footprint_ = footprint;
   if (footprint) path_rows_.push_back(PathRow::kGlide);
   {
     const truth::scalar::Vec3<double> r0(x0_[0], x0_[1], x0_[2]), v0(x0_[3], x0_[4], x0_[5]);
@@ -117,7 +118,12 @@ void EntryProblem::param_bounds(double* lo, double* hi) const {
 void EntryProblem::path_bounds(double* lo, double* hi) const {
   for (size_t k = 0; k < path_rows_.size(); ++k) {
     lo[k] = -std::numeric_limits<double>::infinity();
-    hi[k] = path_rows_[k] == PathRow::kSkipOut ? skip_alt_m_ : 1.0;
+    // Footprint modes ride a path limit at the collocation points; the flight between them
+    // (the open-loop replay that proves a point reached) overshoots it by a fraction of a
+    // percent (HORUS heat flux), hence the back-off.
+    const bool limit_row = path_rows_[k] != PathRow::kSkipOut && path_rows_[k] != PathRow::kGlide &&
+                           path_rows_[k] != PathRow::kAlphaProfile;
+    hi[k] = path_rows_[k] == PathRow::kSkipOut ? skip_alt_m_ : (limit_row && footprint_ ? 1.0 - kFootprintPathBackoff : 1.0);
     if (path_rows_[k] == PathRow::kAlphaProfile) lo[k] = -1.0;
   }
 }

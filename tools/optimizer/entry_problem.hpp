@@ -56,6 +56,8 @@ constexpr double kFootprintGlideMaxGamma_rad = 2.0 * M_PI / 180.0;
 /// With alpha free the solver seeks the vehicle's L/D max far from any flown profile and does
 /// not converge in 1000 iterations (X-33: 13000 km beyond the aim point, still rising).
 constexpr double kFootprintAlphaBand_rad = 3.0 * M_PI / 180.0;
+/// Footprint modes keep every path limit 1 % below its value at the collocation points.
+constexpr double kFootprintPathBackoff = 0.01;
 
 class EntryProblem {
  public:
@@ -139,6 +141,7 @@ class EntryProblem {
   double alpha_min_rad_ = 0.0;
   double aim_[3] = {}, line_dir_[3] = {}, line_right_[3] = {};  // aim point and arrival-line frame (R)
   double limit_[4] = {};
+  bool footprint_ = false;
   double e_entry_ = 0.0;  // specific energy of the entry state (the alpha profile's scale)
   std::vector<PathRow> path_rows_;
   std::vector<TermRow> terminal_rows_;
