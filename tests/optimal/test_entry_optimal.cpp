@@ -34,6 +34,56 @@ TEST(EntryOptimal, X33NominalMaximumMarginFlownOpenLoopReachesTheCollocatedEndPo
   for (const auto& v : r.replay.verdict.violations) ADD_FAILURE() << "replay violation " << v;
 }
 
+// The mission's alpha profile at E/E_entry, interpolated here (linear, clamped) from the table.
+double profile_alpha_rad(const config::Table1D& t, double e_norm) {
+  if (e_norm <= t.x.front()) return t.y.front();
+  if (e_norm >= t.x.back()) return t.y.back();
+  size_t j = 1;
+  while (t.x[j] < e_norm) ++j;
+  const double w = (e_norm - t.x[j - 1]) / (t.x[j] - t.x[j - 1]);
+  return t.y[j - 1] + w * (t.y[j] - t.y[j - 1]);
+}
+
+// Largest |alpha - profile| over the collocation points of a solution.
+double max_alpha_departure_rad(const config::Mission& m, const Trajectory& tr) {
+  const truth::scalar::Vec3<double> r0(tr.x[0], tr.x[1], tr.x[2]), v0(tr.x[3], tr.x[4], tr.x[5]);
+  const double e_entry = truth::PointModel::specific_energy(r0, v0);
+  double worst = 0.0;
+  for (int j = 0; j < tr.points(); ++j) {
+    const double* x = &tr.x[static_cast<size_t>(6 * j)];
+    const truth::scalar::Vec3<double> r(x[0], x[1], x[2]), v(x[3], x[4], x[5]);
+    const double e_norm = truth::PointModel::specific_energy(r, v) / e_entry;
+    worst = std::max(worst, std::fabs(tr.u[static_cast<size_t>(2 * j)] - profile_alpha_rad(m.alpha_profile, e_norm)));
+  }
+  return worst;
+}
+
+// --oracle-alpha-band: the feasibility of a guidance that flies its alpha profile. The solution
+// keeps alpha within the band of the profile at every collocation point, where the free solve
+// of the same run leaves it, and its open-loop flight is still judged a success.
+TEST(EntryOptimal, X33AlphaBandKeepsTheSolutionOnTheMissionsAlphaProfile) {
+  const config::Mission m = load("x33");
+  OracleOptions o;
+  o.mode = EntryMode::kMaxMargin;
+  o.solve_decided = true;
+  const OracleResult free_alpha = run_oracle(m, 0, false, o);
+  ASSERT_TRUE(free_alpha.error.empty()) << free_alpha.error;
+  ASSERT_TRUE(converged(free_alpha.entry.solution.status));
+  const double band_rad = 2.0 * M_PI / 180.0;
+  EXPECT_GT(max_alpha_departure_rad(m, free_alpha.entry.solution.trajectory), 1.5 * band_rad);
+
+  o.solve.alpha_band_rad = band_rad;
+  const OracleResult banded = run_oracle(m, 0, false, o);
+  ASSERT_TRUE(banded.error.empty()) << banded.error;
+  ASSERT_TRUE(converged(banded.entry.solution.status)) << banded.entry.solution.ipopt_status;
+  EXPECT_LT(max_alpha_departure_rad(m, banded.entry.solution.trajectory), band_rad * (1.0 + 1e-6));
+  // A restriction cannot raise the best margin (both solves start from the same flight).
+  EXPECT_LE(banded.entry.figures.margin, free_alpha.entry.figures.margin + 1e-3);
+  EXPECT_GT(banded.entry.figures.margin, 0.0);  // the guidance flies this profile successfully
+  ASSERT_TRUE(banded.replayed);
+  EXPECT_TRUE(banded.replay.verdict.success);
+}
+
 TEST(EntryOptimal, HorusDispersedMinimumMissIsAtLeastAsGoodAsTheGuidance) {
   // Seed 9: a guidance success 2.48 km from the aim point (tolerance 3 km).
   OracleOptions o;

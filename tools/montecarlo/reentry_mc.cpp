@@ -329,10 +329,12 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
   json feasible_but_pullout = json::array(), successes_not_found = json::array();
   json optimizer_feasible_beyond_bound = json::array(), undecided_seeds = json::array();
   std::vector<double> solve_times, margins;
+  double alpha_band_deg = 0.0;
   for (const auto& r : runs) {
     if (!r.contains("oracle")) continue;
     const json& o = r["oracle"];
     ++with_oracle;
+    if (o.contains("alpha_band_deg")) alpha_band_deg = std::max(alpha_band_deg, o["alpha_band_deg"].get<double>());
     ++by_class[o["feasibility"].get<std::string>()];
     if (o["solved"].get<bool>()) {
       ++solved;
@@ -360,6 +362,9 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
     rep["success_rate_feasible"] = feasible > 0 ? static_cast<double>(feasible_successes) / feasible : 0.0;
     rep["oracle"] = {
         {"runs", with_oracle},
+        // 0: alpha free in its bounds (any guidance); > 0: within this band of the mission's
+        // alpha profile (a guidance that flies its profile).
+        {"alpha_band_deg", alpha_band_deg},
         {"solved", solved},
         {"feasible", feasible},
         {"feasible_successes", feasible_successes},
@@ -452,6 +457,10 @@ int write_report(const std::vector<std::string>& dirs, const std::string& out, c
     if (!o["undecided_seeds"].empty())
       std::printf("%s: %zu runs undecided; counted as feasible losses, success_rate_feasible %.1f %%\n", name.c_str(),
                   o["undecided_seeds"].size(), 100.0 * o["success_rate_feasible_undecided_as_feasible"].get<double>());
+    if (o.value("alpha_band_deg", 0.0) > 0.0)
+      std::printf("%s: oracle: alpha kept within %.1f deg of the mission's alpha profile (feasible for a guidance "
+                  "that flies its profile)\n",
+                  name.c_str(), o["alpha_band_deg"].get<double>());
     std::printf("%s: oracle classes:", name.c_str());
     for (const auto& [k, v] : o["feasibility"].items()) std::printf(" %s %d", k.c_str(), v.get<int>());
     if (o["solved"].get<int>() > 0)
@@ -477,6 +486,7 @@ int main(int argc, char** argv) {
        oracle_all = false;
   int oracle_segments = reentry::optimal::EntrySolveOptions{}.segments;
   double oracle_max_s = reentry::optimal::EntrySolveOptions{}.solver.max_wall_s;
+  double oracle_alpha_band_deg = 0.0;
   std::vector<std::string> merge;
   app.add_option("--mission", mission_arg, "mission name or TOML file");
   app.add_option("--runs", runs, "number of runs of the whole campaign");
@@ -499,6 +509,10 @@ int main(int argc, char** argv) {
                "oracle: solve every run, also those a guidance success or the pull-out bound decides (checks both)");
   app.add_option("--oracle-segments", oracle_segments, "oracle: Hermite-Simpson segments")->check(CLI::Range(10, 1000));
   app.add_option("--oracle-max-time", oracle_max_s, "oracle: wall-clock limit of one solve [s]")->check(CLI::PositiveNumber);
+  app.add_option("--oracle-alpha-band", oracle_alpha_band_deg,
+                 "oracle: keep alpha within this band of the mission's alpha profile [deg] (0: alpha free; "
+                 "> 0: feasibility for a guidance that flies its profile)")
+      ->check(CLI::Range(0.0, 90.0));
   app.add_option("--merge", merge, "combine the run files of these directories into --out (runs.jsonl, report.json)");
   CLI11_PARSE(app, argc, argv);
 
@@ -564,10 +578,12 @@ int main(int argc, char** argv) {
       reentry::optimal::OracleOptions oo;
       oo.solve.segments = oracle_segments;
       oo.solve.solver.max_wall_s = oracle_max_s;
+      oo.solve.alpha_band_rad = oracle_alpha_band_deg * M_PI / 180.0;
       oo.solve_decided = oracle_all;
       const reentry::optimal::OracleResult o = reentry::optimal::run_oracle(loaded.mission, seed + r, !nominal, oo);
       rec = run_record(r, o.flown);
       rec["oracle"] = oracle_record(o);
+      rec["oracle"]["alpha_band_deg"] = oracle_alpha_band_deg;
       rec["feasible"] = o.feasible;
       rec["pullout_bound"] = pullout_record(o.pullout);
     } else {

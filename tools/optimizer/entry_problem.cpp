@@ -16,7 +16,8 @@ const char* to_string(EntryMode m) {
   return "unknown";
 }
 
-EntryProblem::EntryProblem(const truth::Simulator& sim, EntryMode mode, double tf_guess_s, double downrange_m)
+EntryProblem::EntryProblem(const truth::Simulator& sim, EntryMode mode, double tf_guess_s, double downrange_m,
+                           double alpha_band_rad)
     : model_(sim.point_model()),
       mission_(sim.mission()),
       mode_(mode),
@@ -61,7 +62,8 @@ EntryProblem::EntryProblem(const truth::Simulator& sim, EntryMode mode, double t
     const truth::scalar::Vec3<double> r0(x0_[0], x0_[1], x0_[2]), v0(x0_[3], x0_[4], x0_[5]);
     e_entry_ = truth::PointModel::specific_energy(r0, v0);
   }
-  if (footprint && !mission_.alpha_profile.x.empty()) path_rows_.push_back(PathRow::kAlphaProfile);
+  alpha_band_rad_ = footprint ? kFootprintAlphaBand_rad : alpha_band_rad;
+  if (alpha_band_rad_ > 0.0 && !mission_.alpha_profile.x.empty()) path_rows_.push_back(PathRow::kAlphaProfile);
   terminal_rows_.push_back(TermRow::kEnergy);
   if (mode == EntryMode::kMaxMargin || mode == EntryMode::kMinMiss) terminal_rows_.push_back(TermRow::kRange);
   terminal_rows_.push_back(TermRow::kAltHigh);
@@ -131,7 +133,10 @@ void EntryProblem::path_bounds(double* lo, double* hi) const {
 void EntryProblem::path_param_coupling(double* a) const {
   for (size_t k = 0; k < path_rows_.size(); ++k) {
     a[k * kParams + 0] = 0.0;
-    a[k * kParams + 1] = (mode_ == EntryMode::kMaxMargin && path_rows_[k] != PathRow::kSkipOut) ? -1.0 : 0.0;
+    // The margin relaxes the mission's limits, not the skip-out altitude or the alpha band
+    // (a restriction of the guidance's design, not a limit of the vehicle).
+    const bool limit_row = path_rows_[k] != PathRow::kSkipOut && path_rows_[k] != PathRow::kAlphaProfile;
+    a[k * kParams + 1] = (mode_ == EntryMode::kMaxMargin && limit_row) ? -1.0 : 0.0;
   }
 }
 

@@ -42,8 +42,9 @@ enum class EntryMode { kMinMiss, kMaxMargin, kMaxDownrange, kMinDownrange, kMaxC
 const char* to_string(EntryMode m);
 
 /// Rows of the path constraints (when the mission limits them).
-/// Footprint modes only: kGlide, the flight-path angle at most kFootprintGlideMaxGamma_rad;
-/// kAlphaProfile, alpha within kFootprintAlphaBand_rad of the mission's profile alpha(E/E_entry).
+/// Footprint modes only: kGlide, the flight-path angle at most kFootprintGlideMaxGamma_rad.
+/// kAlphaProfile: alpha within a band of the mission's profile alpha(E/E_entry)
+/// (kFootprintAlphaBand_rad in the footprint modes; optional in the others).
 enum class PathRow { kHeatFlux, kLoadFactor, kDynamicPressure, kQAlpha, kSkipOut, kGlide, kAlphaProfile };
 
 /// The footprint is that of gliding entries: a trajectory that climbs (skips) could carry the
@@ -67,7 +68,12 @@ class EntryProblem {
 
   /// `sim` is the run's simulator right after Simulator::create (its state is the entry state);
   /// it must outlive the problem. `downrange_m` is the fixed downrange of the crossrange modes.
-  EntryProblem(const truth::Simulator& sim, EntryMode mode, double tf_guess_s, double downrange_m = 0.0);
+  /// `alpha_band_rad` > 0 keeps alpha within that band of the mission's alpha profile in the
+  /// margin and miss modes (the feasibility of a guidance that flies its profile and modulates
+  /// alpha only that far); 0 leaves alpha free in [alpha_min, alpha_max]. The footprint modes
+  /// always use kFootprintAlphaBand_rad.
+  EntryProblem(const truth::Simulator& sim, EntryMode mode, double tf_guess_s, double downrange_m = 0.0,
+               double alpha_band_rad = 0.0);
 
   EntryMode mode() const { return mode_; }
   const truth::PointModel& model() const { return model_; }
@@ -143,6 +149,7 @@ class EntryProblem {
   double limit_[4] = {};
   bool footprint_ = false;
   double e_entry_ = 0.0;  // specific energy of the entry state (the alpha profile's scale)
+  double alpha_band_rad_ = 0.0;  // kAlphaProfile row: alpha within this of the profile [rad]
   std::vector<PathRow> path_rows_;
   std::vector<TermRow> terminal_rows_;
 };
@@ -167,7 +174,7 @@ void EntryProblem::point(const T& t, const T* x, const T* u, T* xdot, T* path) c
       case PathRow::kGlide: path[k] = o.gamma / kFootprintGlideMaxGamma_rad; break;
       case PathRow::kAlphaProfile: {
         const T e_norm = truth::PointModel::specific_energy(r, v) / e_entry_;
-        path[k] = (u[0] - profile_alpha(e_norm)) / kFootprintAlphaBand_rad;
+        path[k] = (u[0] - profile_alpha(e_norm)) / alpha_band_rad_;
         break;
       }
     }

@@ -168,7 +168,7 @@ EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Traje
     r.error = "initial guess does not match the mesh";
     return r;
   }
-  const EntryProblem pb(sim, mode, guess.p[0], downrange_m);
+  const EntryProblem pb(sim, mode, guess.p[0], downrange_m, options.alpha_band_rad);
   Trajectory start = guess;
   if (mode == EntryMode::kMaxMargin) {
     // Start s at the guess's largest normalised violation, so the margin rows start feasible.

@@ -28,6 +28,8 @@ struct EntrySolveOptions {
   // solution within tens to hundreds of metres of the collocated end point; 60-80 lose
   // kilometres on HORUS.
   int segments = 100;
+  /// > 0: alpha within this band of the mission's alpha profile (EntryProblem); 0: free.
+  double alpha_band_rad = 0.0;
   SolverOptions solver = default_solver();
   /// The truth models interpolate tables bilinearly: linear in alpha (and Mach) inside each
   /// cell, so the exact Hessian has no curvature where the real curvature sits (the cell

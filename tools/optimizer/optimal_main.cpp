@@ -248,6 +248,7 @@ int main(int argc, char** argv) {
   int print_level = 0;
   double step_km = 500.0;
   double max_wall = EntrySolveOptions{}.solver.max_wall_s, heating_limit = INFINITY;
+  double alpha_band_deg = 0.0;
   app.add_option("--mission", mission_arg, "mission name or TOML file");
   app.add_option("--mode", mode_arg, "margin (maximum common constraint margin) or miss (minimum TAEM miss)")
       ->check(CLI::IsMember({"margin", "miss"}));
@@ -261,6 +262,9 @@ int main(int argc, char** argv) {
   app.add_option("--segments", segments, "Hermite-Simpson segments")->check(CLI::Range(4, 2000));
   app.add_option("--max-iter", max_iter, "IPOPT iteration limit")->check(CLI::Range(0, 100000));
   app.add_option("--max-time", max_wall, "wall-clock limit of one solve [s]")->check(CLI::PositiveNumber);
+  app.add_option("--alpha-band", alpha_band_deg,
+                 "margin / miss: alpha within this band of the mission's alpha profile [deg] (0: free)")
+      ->check(CLI::Range(0.0, 90.0));
   app.add_flag("--exact-hessian", exact, "exact (AD) Hessian instead of limited-memory quasi-Newton");
   app.add_option("--print-level", print_level, "IPOPT console output level (0-12)");
   app.add_option("--repeat", repeat, "solve N times, print median and maximum wall time")->check(CLI::Range(1, 1000));
@@ -284,6 +288,7 @@ int main(int argc, char** argv) {
   so.solver.max_wall_s = max_wall;
   so.solver.exact_hessian = exact;
   so.solver.print_level = print_level;
+  so.alpha_band_rad = alpha_band_deg * M_PI / 180.0;
   if (footprint) {
     if (out.empty()) {
       std::fprintf(stderr, "reentry_optimal: --footprint needs --out DIR\n");
@@ -356,7 +361,7 @@ int main(int argc, char** argv) {
     std::string err;
     auto sim = make_run_simulator(loaded.mission, seed, dispersed, &err);
     std::ofstream csv(fs::path(out) / "solution.csv");
-    write_track_csv(csv, "optimal", track(EntryProblem(*sim, o.mode, r.entry.figures.tf_s), r.entry.solution.trajectory), true);
+    write_track_csv(csv, "optimal", track(EntryProblem(*sim, o.mode, r.entry.figures.tf_s, 0.0, so.alpha_band_rad), r.entry.solution.trajectory), true);
   }
   return converged(r.entry.solution.status) ? 0 : 1;
 }

@@ -57,7 +57,7 @@ OracleResult solve_oracle(const config::Mission& mission, std::uint64_t seed, bo
   if (options.replay) {
     auto replay_sim = make_run_simulator(mission, seed, dispersed, &out.error);
     if (!replay_sim) return out;
-    const EntryProblem pb(*sim, options.mode, guess.p[0]);
+    const EntryProblem pb(*sim, options.mode, guess.p[0], 0.0, options.solve.alpha_band_rad);
     out.replay = replay_open_loop(*replay_sim, pb, out.entry.solution.trajectory);
     out.replayed = true;
   }
