@@ -578,7 +578,7 @@ int main(int argc, char** argv) {
       reentry::optimal::OracleOptions oo;
       oo.solve.segments = oracle_segments;
       oo.solve.solver.max_wall_s = oracle_max_s;
-      oo.solve.alpha_band_rad = oracle_alpha_band_deg * M_PI / 180.0;
+      oo.solve.alpha_band_rad = oracle_alpha_band_deg / kDeg;
       oo.solve_decided = oracle_all;
       const reentry::optimal::OracleResult o = reentry::optimal::run_oracle(loaded.mission, seed + r, !nominal, oo);
       rec = run_record(r, o.flown);

@@ -117,15 +117,24 @@ void EntryProblem::param_bounds(double* lo, double* hi) const {
   }
 }
 
+namespace {
+/// A limit of the vehicle (heat flux, load, q, q alpha): backed off in the footprint modes and
+/// relaxed by the margin. The skip-out altitude, the glide row and the alpha band are
+/// restrictions of the trajectory sought, neither.
+bool is_vehicle_limit(PathRow row) {
+  return row != PathRow::kSkipOut && row != PathRow::kGlide && row != PathRow::kAlphaProfile;
+}
+}  // namespace
+
 void EntryProblem::path_bounds(double* lo, double* hi) const {
   for (size_t k = 0; k < path_rows_.size(); ++k) {
     lo[k] = -std::numeric_limits<double>::infinity();
     // Footprint modes ride a path limit at the collocation points; the flight between them
     // (the open-loop replay that proves a point reached) overshoots it by a fraction of a
     // percent (HORUS heat flux), hence the back-off.
-    const bool limit_row = path_rows_[k] != PathRow::kSkipOut && path_rows_[k] != PathRow::kGlide &&
-                           path_rows_[k] != PathRow::kAlphaProfile;
-    hi[k] = path_rows_[k] == PathRow::kSkipOut ? skip_alt_m_ : (limit_row && footprint_ ? 1.0 - kFootprintPathBackoff : 1.0);
+    hi[k] = path_rows_[k] == PathRow::kSkipOut
+                ? skip_alt_m_
+                : (is_vehicle_limit(path_rows_[k]) && footprint_ ? 1.0 - kFootprintPathBackoff : 1.0);
     if (path_rows_[k] == PathRow::kAlphaProfile) lo[k] = -1.0;
   }
 }
@@ -133,10 +142,7 @@ void EntryProblem::path_bounds(double* lo, double* hi) const {
 void EntryProblem::path_param_coupling(double* a) const {
   for (size_t k = 0; k < path_rows_.size(); ++k) {
     a[k * kParams + 0] = 0.0;
-    // The margin relaxes the mission's limits, not the skip-out altitude or the alpha band
-    // (a restriction of the guidance's design, not a limit of the vehicle).
-    const bool limit_row = path_rows_[k] != PathRow::kSkipOut && path_rows_[k] != PathRow::kAlphaProfile;
-    a[k * kParams + 1] = (mode_ == EntryMode::kMaxMargin && limit_row) ? -1.0 : 0.0;
+    a[k * kParams + 1] = (mode_ == EntryMode::kMaxMargin && is_vehicle_limit(path_rows_[k])) ? -1.0 : 0.0;
   }
 }
 

@@ -288,7 +288,7 @@ int main(int argc, char** argv) {
   so.solver.max_wall_s = max_wall;
   so.solver.exact_hessian = exact;
   so.solver.print_level = print_level;
-  so.alpha_band_rad = alpha_band_deg * M_PI / 180.0;
+  so.alpha_band_rad = alpha_band_deg / kDeg;
   if (footprint) {
     if (out.empty()) {
       std::fprintf(stderr, "reentry_optimal: --footprint needs --out DIR\n");
