@@ -20,6 +20,8 @@ EntryProblem::EntryProblem(const truth::Simulator& sim, EntryMode mode, double t
                            double alpha_band_rad)
     : model_(sim.point_model()),
       mission_(sim.mission()),
+      aero_(sim.point_model()),
+      profile_(sim.mission().alpha_profile.x, sim.mission().alpha_profile.y),
       mode_(mode),
       tf_guess_s_(tf_guess_s),
       downrange_m_(downrange_m) {

@@ -1,12 +1,13 @@
 // The entry of one run as an optimal-control problem on the truth simulator's own models.
 //
 // State: the simulator's inertial position and velocity (r_I, v_I), controls: alpha and sigma,
-// parameters: t_f and a margin s. The dynamics are truth::PointModel::evaluate, the function the
-// simulator integrates (rotating oblate Earth, J2-J4 gravity, US76 with the run's density
+// parameters: t_f and a margin s. The dynamics are truth::PointModel::evaluate_with, the function
+// the simulator integrates (rotating oblate Earth, J2-J4 gravity, US76 with the run's density
 // dispersion, the run's wind, the run's aero scales, mass and trim, the vehicle's heating
-// model); the initial state is the simulator's entry state of that run. Nothing is modelled
-// twice: a dispersion or a model change in the truth reaches the optimizer through
-// truth::Simulator::create.
+// model), with the aerodynamic coefficients from the C2 fits of the truth's own tables
+// (smooth_models.hpp); the initial state is the simulator's entry state of that run. Nothing is
+// modelled twice: a dispersion or a model change in the truth reaches the optimizer through
+// truth::Simulator::create. point_on_tables() evaluates the same rows on the truth's tables.
 //
 // Constraints, as the referee (truth::judge_mission) judges a flight:
 // - path, at every collocation point: heat flux, load factor (3.7), q and q alpha at most their
@@ -35,6 +36,7 @@
 #include "environment/interpolation.hpp"
 #include "hermite_simpson.hpp"
 #include "reentry/config/mission.hpp"
+#include "smooth_models.hpp"
 
 namespace reentry::optimal {
 
@@ -84,6 +86,10 @@ class EntryProblem {
   int n_path() const { return static_cast<int>(path_rows_.size()); }
   int n_terminal() const { return static_cast<int>(terminal_rows_.size()); }
   double t0() const { return 0.0; }
+  /// With zonal gravity (central, J2-J4) the models are invariant under the Earth's rotation
+  /// about its axis (shape, gravity, atmosphere and wind by altitude), so the point rows of a
+  /// state in inertial coordinates do not depend on t; the sh20 field does.
+  bool time_invariant() const { return model_.gravity->model() != truth::GravityModel::kSphericalHarmonics; }
   void initial_state(double* x) const;
   void state_bounds(double* lo, double* hi) const;
   void control_bounds(double* lo, double* hi) const;
@@ -107,21 +113,19 @@ class EntryProblem {
   template <class T>
   T objective(const T* x, const T* u, const T* p) const;
 
-  /// The mission's alpha profile at normalised energy E/E_entry (linear, clamped at its ends).
+  /// The same point rows with the truth's own aerodynamic tables (double: the reference of the
+  /// model correction and of the fit checks).
+  void point_on_tables(double t, const double* x, const double* u, double* xdot, double* path) const {
+    point_with(TableAero{model_}, t, x, u, xdot, path);
+  }
+
+  /// The mission's alpha profile at normalised energy E/E_entry: the table (linear, held at its
+  /// ends) with its corners rounded (C2, smooth_models.hpp).
   template <class T>
   T profile_alpha(const T& e_norm) const {
-    const auto& tab = mission_.alpha_profile;
-    const int n = static_cast<int>(tab.x.size());
-    if (n == 1) return T(tab.y[0]);
-    const int j = truth::detail::bracket(tab.x.data(), n, truth::scalar::value(e_norm));
-    const double x0 = tab.x[static_cast<size_t>(j)], x1 = tab.x[static_cast<size_t>(j + 1)];
-    const double y0 = tab.y[static_cast<size_t>(j)], y1 = tab.y[static_cast<size_t>(j + 1)];
-    const double w = (truth::scalar::value(e_norm) - x0) / (x1 - x0);
-    if (w <= 0.0) return T(y0);
-    if (w >= 1.0) return T(y1);
-    const T wt = (e_norm - x0) / (x1 - x0);
-    return y0 + (y1 - y0) * wt;
+    return profile_(e_norm);
   }
+  const SmoothAero& smooth_aero() const { return aero_; }
 
   /// Final-point quantities the terminal rows and the objectives use.
   template <class T>
@@ -134,8 +138,20 @@ class EntryProblem {
  private:
   enum class TermRow { kEnergy, kRange, kAltHigh, kAltLow, kMachHigh, kMachLow, kGammaHigh, kGammaLow, kHeadingPos,
                        kHeadingNeg, kHeadingCos, kDownrange };
+  template <class T, class AeroAt>
+  void point_with(const AeroAt& aero_at, const T& t, const T* x, const T* u, T* xdot, T* path) const;
+  /// The truth's own aerodynamic tables, as evaluate_with takes them.
+  struct TableAero {
+    const truth::PointModel& m;
+    truth::AeroCoefficients operator()(double a, double mach, double q) const {
+      return m.aero->coefficients(a, mach, q, m.trim, m.cl_scale, m.cd_scale);
+    }
+  };
+
   const truth::PointModel& model_;
   const config::Mission& mission_;
+  SmoothAero aero_;
+  SmoothPiecewiseLinear profile_;
   EntryMode mode_;
   double tf_guess_s_;
   double downrange_m_;
@@ -158,8 +174,13 @@ class EntryProblem {
 
 template <class T>
 void EntryProblem::point(const T& t, const T* x, const T* u, T* xdot, T* path) const {
+  point_with(aero_, t, x, u, xdot, path);
+}
+
+template <class T, class AeroAt>
+void EntryProblem::point_with(const AeroAt& aero_at, const T& t, const T* x, const T* u, T* xdot, T* path) const {
   const truth::scalar::Vec3<T> r(x[0], x[1], x[2]), v(x[3], x[4], x[5]);
-  const truth::PointOutputs<T> o = model_.evaluate(t, r, v, u[0], u[1], true);
+  const truth::PointOutputs<T> o = model_.evaluate_with(aero_at, t, r, v, u[0], u[1], true);
   for (int i = 0; i < 3; ++i) {
     xdot[i] = x[3 + i];
     xdot[3 + i] = o.accel_I[i];
@@ -188,7 +209,7 @@ EntryProblem::Final<T> EntryProblem::final_quantities(const T& t, const T* x, co
   using std::atan2;
   using std::asin;
   const truth::scalar::Vec3<T> r(x[0], x[1], x[2]), v(x[3], x[4], x[5]);
-  const truth::PointOutputs<T> o = model_.evaluate(t, r, v, u[0], u[1], true);
+  const truth::PointOutputs<T> o = model_.evaluate_with(aero_, t, r, v, u[0], u[1], true);
   Final<T> f;
   f.energy = truth::PointModel::specific_energy(r, v);
   f.h = o.h_m;

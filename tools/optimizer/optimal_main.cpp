@@ -62,9 +62,16 @@ json figures_json(const EntryFigures& f) {
           {"all_satisfied", f.all_satisfied}};
 }
 
-void print_solution(const char* what, const Solution& s, const EntryFigures& f) {
-  std::printf("%s: %s (IPOPT %s), %d iterations, %.2f s, max violation %.1e\n", what, to_string(s.status),
-              s.ipopt_status.c_str(), s.iterations, s.wall_s, s.max_violation);
+void print_solution(const char* what, const EntryResult& r) {
+  const Solution& s = r.solution;
+  const EntryFigures& f = r.figures;
+  std::printf("%s: %s (IPOPT %s), %.2f s in %zu solves, %d segments, max violation %.1e\n", what, to_string(s.status),
+              s.ipopt_status.c_str(), r.wall_s, r.passes.size(), r.segments(), s.max_violation);
+  for (size_t k = 0; k < r.passes.size(); ++k) {
+    const MeshPass& p = r.passes[k];
+    std::printf("  solve %zu: %d segments%s, %s, %d iterations, %.2f s; table-model flight ends %.0f m from it\n", k + 1,
+                p.segments, p.corrected ? " (model corrected)" : "", to_string(p.status), p.iterations, p.wall_s, p.end_error_m);
+  }
   std::printf("  t_f %.1f s, margin %+.4f, miss %.3f km (along %+.2f, across %+.2f), altitude %+.0f m, Mach %.2f, "
               "gamma %.2f deg, heading %+.2f deg\n",
               f.tf_s, f.margin, f.miss_m * 1e-3, f.along_m * 1e-3, f.cross_m * 1e-3, f.altitude_err_m, f.mach,
@@ -141,13 +148,12 @@ int run_footprint(const config::Mission& mission, const EntrySolveOptions& optio
   }
   std::string err;
   auto sim = make_run_simulator(mission, 0, false, &err);
-  auto guess_sim = make_run_simulator(mission, 0, false, &err);
-  if (!sim || !guess_sim) {
+  if (!sim) {
     std::fprintf(stderr, "reentry_optimal: %s\n", err.c_str());
     return 2;
   }
   const Mesh mesh = Mesh::uniform(options.segments);
-  const Trajectory guess = consistent_guess_from_flown(*guess_sim, flown.samples, mesh);
+  const Trajectory guess = guess_from_flown(flown.samples, mesh);
   json pts = json::array();
   fs::create_directories(out);
   std::ofstream tracks(fs::path(out) / "footprint_tracks.csv");
@@ -243,7 +249,7 @@ int main(int argc, char** argv) {
   CLI::App app{"optimal entry trajectories on the truth models (direct collocation, IPOPT)"};
   std::string mission_arg, mode_arg = "margin", out;
   std::uint64_t seed = 7;
-  bool dispersed = false, replay = true, footprint = false, betts = false, exact = false;
+  bool dispersed = false, replay = true, footprint = false, betts = false, lbfgs = false;
   int segments = EntrySolveOptions{}.segments, max_iter = EntrySolveOptions{}.solver.max_iterations, points = 3, repeat = 1;
   int print_level = 0;
   double step_km = 500.0;
@@ -265,8 +271,22 @@ int main(int argc, char** argv) {
   app.add_option("--alpha-band", alpha_band_deg,
                  "margin / miss: alpha within this band of the mission's alpha profile [deg] (0: free)")
       ->check(CLI::Range(0.0, 90.0));
-  app.add_flag("--exact-hessian", exact, "exact (AD) Hessian instead of limited-memory quasi-Newton");
+  app.add_flag("--lbfgs", lbfgs, "IPOPT's limited-memory quasi-Newton Hessian instead of the exact (AD) one");
   app.add_option("--print-level", print_level, "IPOPT console output level (0-12)");
+  std::vector<std::string> ipopt_options;
+  double smoothing = EntrySolveOptions{}.solver.control_smoothing;
+  double proximity = EntrySolveOptions{}.solver.control_proximity;
+  app.add_option("--proximity", proximity, "weight of the control proximity term of the objective");
+  RefinementOptions ro;
+  app.add_option("--a-priori-passes", ro.a_priori_passes, "refinements of the first mesh by the start's local errors");
+  app.add_option("--a-priori-reduction", ro.a_priori_reduction, "their aimed reduction");
+  app.add_option("--refinement-passes", ro.max_passes, "solves after the first (mesh refinement)");
+  app.add_option("--end-error-target", ro.end_error_target_m, "estimated end-point error that stops refinement [m]");
+  app.add_option("--smoothing", smoothing, "weight of the control smoothing term of the objective");
+  std::string derivative_test;
+  app.add_option("--ipopt-option", ipopt_options, "further IPOPT option name=value (repeatable)");
+  app.add_option("--derivative-test", derivative_test, "IPOPT's derivative checker: first-order or second-order")
+      ->check(CLI::IsMember({"first-order", "second-order"}));
   app.add_option("--repeat", repeat, "solve N times, print median and maximum wall time")->check(CLI::Range(1, 1000));
   app.add_flag("--betts", betts, "Betts's Space Shuttle maximum-crossrange benchmark");
   app.add_option("--heating-limit", heating_limit, "Betts: heating limit [BTU/ft^2/s] (70 in the constrained case)");
@@ -286,8 +306,20 @@ int main(int argc, char** argv) {
   so.segments = segments;
   so.solver.max_iterations = max_iter;
   so.solver.max_wall_s = max_wall;
-  so.solver.exact_hessian = exact;
+  so.solver.exact_hessian = !lbfgs;
   so.solver.print_level = print_level;
+  so.solver.derivative_test = derivative_test;
+  so.solver.control_smoothing = smoothing;
+  so.solver.control_proximity = proximity;
+  so.refinement = ro;
+  for (const std::string& kv : ipopt_options) {
+    const size_t eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      std::fprintf(stderr, "reentry_optimal: --ipopt-option needs name=value, got '%s'\n", kv.c_str());
+      return 2;
+    }
+    so.solver.ipopt_options.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+  }
   so.alpha_band_rad = alpha_band_deg / kDeg;
   if (footprint) {
     if (out.empty()) {
@@ -316,9 +348,9 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "reentry_optimal: %s\n", r.error.c_str());
       return 2;
     }
-    walls.push_back(r.entry.solution.wall_s);
+    walls.push_back(r.entry.wall_s);
   }
-  print_solution(to_string(o.mode), r.entry.solution, r.entry.figures);
+  print_solution(to_string(o.mode), r.entry);
   std::printf("  optimizer: %s; run: %s\n", r.optimizer_feasible ? "every constraint met" : "not feasible",
               to_string(r.feasibility));
   if (repeat > 1)

@@ -45,9 +45,7 @@ OracleResult solve_oracle(const config::Mission& mission, std::uint64_t seed, bo
   auto sim = make_run_simulator(mission, seed, dispersed, &out.error);
   if (!sim) return out;
   const Mesh mesh = Mesh::uniform(options.solve.segments);
-  auto guess_sim = make_run_simulator(mission, seed, dispersed, &out.error);
-  if (!guess_sim) return out;
-  const Trajectory guess = consistent_guess_from_flown(*guess_sim, flown, mesh);
+  const Trajectory guess = guess_from_flown(flown, mesh);
   out.entry = solve_entry(*sim, options.mode, guess, options.solve);
   if (!out.entry.error.empty()) {
     out.error = out.entry.error;
