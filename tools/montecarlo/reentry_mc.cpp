@@ -92,45 +92,6 @@ json run_record(int run, const ClosedLoopResult& r) {
   return j;
 }
 
-json num_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-
-// The oracle's part of a run record: its verdict, and the solve when the optimizer judged.
-json oracle_record(const reentry::optimal::OracleResult& o) {
-  using reentry::optimal::to_string;
-  json j = {{"error", o.error}, {"feasible", o.feasible}, {"feasibility", to_string(o.feasibility)}, {"solved", o.solved}};
-  if (!o.solved) return j;
-  const auto& f = o.entry.figures;
-  const auto& s = o.entry.solution;
-  const std::pair<const char*, double> margins[] = {
-      {"heat_flux", f.margin_heat_flux}, {"load_factor", f.margin_load},   {"dynamic_pressure", f.margin_q},
-      {"q_alpha", f.margin_q_alpha},     {"taem_range", f.margin_range},   {"taem_altitude", f.margin_altitude},
-      {"taem_mach", f.margin_mach},      {"taem_flight_path", f.margin_gamma}, {"taem_heading", f.margin_heading}};
-  json m = json::object();
-  json binding = json::array();  // the constraints that set the common margin
-  for (const auto& [name, v] : margins) {
-    m[name] = num_or_null(v);
-    if (std::isfinite(v) && std::isfinite(f.margin) && v <= f.margin + 1e-3) binding.push_back(name);
-  }
-  j["optimizer_feasible"] = o.optimizer_feasible;
-  j["status"] = to_string(s.status);
-  j["ipopt_status"] = s.ipopt_status;
-  j["iterations"] = s.iterations;
-  j["solve_s"] = s.wall_s;
-  j["margin"] = num_or_null(f.margin);
-  j["binding"] = binding;
-  j["margins"] = m;
-  j["miss_km"] = f.miss_m * 1e-3;
-  j["tf_s"] = f.tf_s;
-  if (o.replayed) {
-    j["replay"] = {{"success", o.replay.verdict.success},
-                   {"event", reentry::truth::to_string(o.replay.summary.event)},
-                   {"miss_km", o.replay.verdict.taem_miss_m * 1e-3},
-                   {"end_point_diff_m", o.replay.final_position_diff_m},
-                   {"violations", o.replay.verdict.violations}};
-  }
-  return j;
-}
-
 json pullout_record(const reentry::tools::PulloutBound& b) {
   const auto& m = b.maxima;
   return {{"error", b.error},
@@ -328,6 +289,7 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
   std::map<std::string, int> binding_infeasible;
   json feasible_but_pullout = json::array(), successes_not_found = json::array();
   json optimizer_feasible_beyond_bound = json::array(), undecided_seeds = json::array();
+  json undecided_reasons = json::object();
   std::vector<double> solve_times, margins;
   double alpha_band_deg = 0.0;
   for (const auto& r : runs) {
@@ -349,7 +311,10 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
       if (r["success"].get<bool>()) ++feasible_successes;
       if (r.contains("pullout_bound") && !r["pullout_bound"]["exceeded"].empty()) feasible_but_pullout.push_back(r["seed"]);
     }
-    if (o["feasibility"] == "undecided" || o["feasibility"] == "optimizer_only") undecided_seeds.push_back(r["seed"]);
+    if (o["feasibility"] == "undecided") {
+      undecided_seeds.push_back(r["seed"]);
+      undecided_reasons[std::to_string(r["seed"].get<std::uint64_t>())] = o.value("reason", "");
+    }
     if (o["feasibility"] == "infeasible")
       for (const auto& b : o["binding"]) ++binding_infeasible[b.get<std::string>()];
   }
@@ -374,6 +339,7 @@ json summarise(const std::vector<json>& runs, const std::string& mission) {
         // Runs nothing decided (the solve stopped at its limits, or its open-loop flight fails
         // while the collocated one has a margin): counted as feasible losses, the rate's floor.
         {"undecided_seeds", undecided_seeds},
+        {"undecided_reasons", undecided_reasons},
         {"success_rate_feasible_undecided_as_feasible",
          feasible + static_cast<int>(undecided_seeds.size()) > 0
              ? static_cast<double>(feasible_successes) / (feasible + static_cast<double>(undecided_seeds.size()))
@@ -582,7 +548,7 @@ int main(int argc, char** argv) {
       oo.solve_decided = oracle_all;
       const reentry::optimal::OracleResult o = reentry::optimal::run_oracle(loaded.mission, seed + r, !nominal, oo);
       rec = run_record(r, o.flown);
-      rec["oracle"] = oracle_record(o);
+      rec["oracle"] = reentry::optimal::oracle_record(o);
       rec["oracle"]["alpha_band_deg"] = oracle_alpha_band_deg;
       rec["feasible"] = o.feasible;
       rec["pullout_bound"] = pullout_record(o.pullout);

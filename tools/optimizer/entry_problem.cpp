@@ -67,7 +67,7 @@ EntryProblem::EntryProblem(const truth::Simulator& sim, EntryMode mode, double t
   alpha_band_rad_ = footprint ? kFootprintAlphaBand_rad : alpha_band_rad;
   if (alpha_band_rad_ > 0.0 && !mission_.alpha_profile.x.empty()) path_rows_.push_back(PathRow::kAlphaProfile);
   terminal_rows_.push_back(TermRow::kEnergy);
-  if (mode == EntryMode::kMaxMargin || mode == EntryMode::kMinMiss) terminal_rows_.push_back(TermRow::kRange);
+  if (mode == EntryMode::kMaxMargin) terminal_rows_.push_back(TermRow::kRange);
   terminal_rows_.push_back(TermRow::kAltHigh);
   terminal_rows_.push_back(TermRow::kAltLow);
   if (tm.mach_target > 0.0 && std::isfinite(tm.mach_tol)) {
@@ -108,12 +108,9 @@ void EntryProblem::control_bounds(double* lo, double* hi) const {
 void EntryProblem::param_bounds(double* lo, double* hi) const {
   lo[0] = 0.2 * tf_guess_s_;
   hi[0] = 3.0 * tf_guess_s_;
-  if (mode_ == EntryMode::kMaxMargin || mode_ == EntryMode::kMinMiss) {
-    // kMinMiss: a miss below 1 % of the tolerance counts as zero. Below that the optimum is a
-    // whole family of trajectories, which keeps the solver from converging; at the bound the
-    // problem is a feasibility problem, which it solves.
-    lo[1] = mode_ == EntryMode::kMinMiss ? -0.99 : -1.0;
-    hi[1] = mode_ == EntryMode::kMinMiss ? 1e4 : 100.0;
+  if (mode_ == EntryMode::kMaxMargin) {
+    lo[1] = -1.0;
+    hi[1] = 100.0;
   } else {
     lo[1] = hi[1] = 0.0;
   }

@@ -137,8 +137,6 @@ Trajectory with_margin_start(const EntryProblem& pb, const Trajectory& guess) {
                      g.margin_gamma, g.margin_heading, g.margin_range})
       if (std::isfinite(m)) worst = std::max(worst, -m);
     start.p[1] = std::clamp(worst + 0.05, -0.95, 99.0);
-  } else if (pb.mode() == EntryMode::kMinMiss) {
-    start.p[1] = std::clamp(g.miss_m / pb.mission().taem.range_tol_m - 1.0 + 0.05, -0.9, 1e4);
   } else {
     start.p[1] = 0.0;
   }
@@ -186,6 +184,9 @@ EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Traje
     if (ro.model_correction) bias = model_bias(pb, start);
   }
   r.figures = evaluate_figures(pb, r.solution.trajectory);
+  r.figures.regularisation = mode == EntryMode::kMaxMargin && r.solution.trajectory.p.size() == 2
+                                 ? r.solution.objective - r.solution.trajectory.p[1]
+                                 : std::numeric_limits<double>::quiet_NaN();
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

@@ -45,7 +45,7 @@ struct EntrySolveOptions {
     s.exact_hessian = true;
     s.linear_controls = true;
     s.mu_init = 1e-5;
-    s.control_proximity = 1e-3;
+    s.control_proximity = 3e-2;
     s.constr_mult_init_max = 0.0;
     s.max_iterations = 500;
     s.max_wall_s = 60.0;
@@ -57,6 +57,9 @@ struct EntrySolveOptions {
 struct EntryFigures {
   double tf_s = 0.0;
   double margin = 0.0;                    // -s (kMaxMargin): common margin, fraction of each limit/tolerance; NaN otherwise
+  /// kMaxMargin: the objective's secondary terms at the solution (control proximity, the miss):
+  /// what they may have cost the margin. NaN otherwise.
+  double regularisation = 0.0;
   double miss_m = 0.0, along_m = 0.0, cross_m = 0.0;
   double altitude_err_m = 0.0, mach = 0.0, gamma_rad = 0.0, heading_err_rad = 0.0;
   double final_lat_rad = 0.0, final_lon_rad = 0.0;  // geocentric, of the final point

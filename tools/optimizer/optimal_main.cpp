@@ -348,11 +348,11 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "reentry_optimal: %s\n", r.error.c_str());
       return 2;
     }
-    walls.push_back(r.entry.wall_s);
+    walls.push_back(r.attempts.empty() ? 0.0 : r.attempts.front().entry.wall_s);
   }
-  print_solution(to_string(o.mode), r.entry);
-  std::printf("  optimizer: %s; run: %s\n", r.optimizer_feasible ? "every constraint met" : "not feasible",
-              to_string(r.feasibility));
+  for (const OracleAttempt& a : r.attempts) print_solution((std::string(to_string(o.mode)) + " from " + a.start).c_str(), a.entry);
+  std::printf("  optimizer: %s; run: %s%s%s\n", r.optimizer_feasible ? "every constraint met" : "not feasible",
+              to_string(r.feasibility), r.reason.empty() ? "" : ": ", r.reason.c_str());
   if (repeat > 1)
     std::printf("  %d solves: wall median %.2f s, max %.2f s\n", repeat, median(walls),
                 *std::max_element(walls.begin(), walls.end()));
