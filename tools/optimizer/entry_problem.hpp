@@ -22,7 +22,8 @@
 // band and path constraint hard; kMaxMargin minimises s over all of them (s* <= 0: feasible,
 // and -s* is the common margin, as a fraction of each limit or tolerance); the footprint modes
 // maximise or minimise the final downrange / crossrange (along / across the arrival line, as
-// truth::arrival_line_offset) with the heading free, the crossrange ones at a given downrange.
+// truth::arrival_line_offset) with the heading free, the crossrange ones at a given downrange,
+// the downrange ones on the arrival line (zero crossrange).
 #pragma once
 
 #include <cmath>
@@ -64,6 +65,8 @@ constexpr double kFootprintAlphaBand_rad = 3.0 * M_PI / 180.0;
 /// tests hardest: its end lies tens to hundreds of metres from the collocated one). It lowers
 /// the common margin by at most this weight.
 constexpr double kMarginMissWeight = 0.01;
+/// The alpha profile's corners are rounded (C2) by at most this much (SmoothPiecewiseLinear).
+constexpr double kProfileCornerDeviation_rad = 0.1 * M_PI / 180.0;
 /// Footprint modes keep every path limit 1 % below its value at the collocation points.
 constexpr double kFootprintPathBackoff = 0.01;
 
@@ -79,8 +82,11 @@ class EntryProblem {
   /// margin and miss modes (the feasibility of a guidance that flies its profile and modulates
   /// alpha only that far); 0 leaves alpha free in [alpha_min, alpha_max]. The footprint modes
   /// always use kFootprintAlphaBand_rad.
+  /// `extent_limit_m` (footprint modes): the extreme sought at most this far (crossrange right
+  /// of the arrival line for kMaxCrossrange, left for kMinCrossrange, downrange beyond the aim
+  /// for kMaxDownrange, short of it for kMinDownrange): a step of the footprint's homotopy.
   EntryProblem(const truth::Simulator& sim, EntryMode mode, double tf_guess_s, double downrange_m = 0.0,
-               double alpha_band_rad = 0.0);
+               double alpha_band_rad = 0.0, double extent_limit_m = std::numeric_limits<double>::infinity());
 
   EntryMode mode() const { return mode_; }
   const truth::PointModel& model() const { return model_; }
@@ -125,7 +131,7 @@ class EntryProblem {
   }
 
   /// The mission's alpha profile at normalised energy E/E_entry: the table (linear, held at its
-  /// ends) with its corners rounded (C2, smooth_models.hpp).
+  /// ends) with its corners rounded by at most kProfileCornerDeviation_rad (C2, smooth_models.hpp).
   template <class T>
   T profile_alpha(const T& e_norm) const {
     return profile_(e_norm);
@@ -139,10 +145,13 @@ class EntryProblem {
   };
   template <class T>
   Final<T> final_quantities(const T& t, const T* x, const T* u) const;
+  /// Footprint modes: the signed extent the objective maximises (m).
+  template <class T>
+  T extent(const Final<T>& f) const;
 
  private:
   enum class TermRow { kEnergy, kRange, kAltHigh, kAltLow, kMachHigh, kMachLow, kGammaHigh, kGammaLow, kHeadingPos,
-                       kHeadingNeg, kHeadingCos, kDownrange };
+                       kHeadingNeg, kHeadingCos, kDownrange, kCrossrange, kExtentLimit };
   template <class T, class AeroAt>
   void point_with(const AeroAt& aero_at, const T& t, const T* x, const T* u, T* xdot, T* path) const;
   /// The truth's own aerodynamic tables, as evaluate_with takes them.
@@ -160,6 +169,7 @@ class EntryProblem {
   EntryMode mode_;
   double tf_guess_s_;
   double downrange_m_;
+  double extent_limit_m_;
   double x0_[kStates] = {};
   double e_taem_ = 0.0;
   double skip_alt_m_ = 0.0;
@@ -267,7 +277,20 @@ void EntryProblem::terminal(const T* x, const T* u, const T* p, T* psi) const {
       case TermRow::kHeadingNeg: psi[k] = -f.heading_sin / sin_heading_tol_ - s; break;
       case TermRow::kHeadingCos: psi[k] = f.heading_cos; break;
       case TermRow::kDownrange: psi[k] = f.along; break;
+      case TermRow::kCrossrange: psi[k] = f.cross; break;
+      case TermRow::kExtentLimit: psi[k] = extent(f); break;
     }
+  }
+}
+
+template <class T>
+T EntryProblem::extent(const Final<T>& f) const {
+  switch (mode_) {
+    case EntryMode::kMaxDownrange: return f.along;
+    case EntryMode::kMinDownrange: return -f.along;
+    case EntryMode::kMaxCrossrange: return f.cross;
+    case EntryMode::kMinCrossrange: return -f.cross;
+    default: return T(0.0);
   }
 }
 

@@ -160,7 +160,7 @@ EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Traje
     r.error = "initial guess does not match a mesh";
     return r;
   }
-  const EntryProblem pb(sim, mode, guess.p[0], downrange_m, options.alpha_band_rad);
+  const EntryProblem pb(sim, mode, guess.p[0], downrange_m, options.alpha_band_rad, options.extent_limit_m);
   const RefinementOptions& ro = options.refinement;
   Mesh mesh = Mesh::of_points(guess.tau);
   Trajectory start = with_margin_start(pb, guess);
@@ -189,6 +189,32 @@ EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Traje
                                  : std::numeric_limits<double>::quiet_NaN();
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
+}
+
+nlohmann::json result_json(const EntryResult& r) {
+  using nlohmann::json;
+  constexpr double kDeg = 180.0 / M_PI;
+  const EntryFigures& f = r.figures;
+  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json passes = json::array();
+  for (const MeshPass& p : r.passes)
+    passes.push_back({{"segments", p.segments}, {"status", to_string(p.status)}, {"iterations", p.iterations},
+                      {"wall_s", p.wall_s}, {"end_error_m", p.end_error_m}, {"model_corrected", p.corrected}});
+  return {{"status", to_string(r.solution.status)}, {"ipopt_status", r.solution.ipopt_status},
+          {"iterations", r.solution.iterations}, {"wall_s", r.wall_s}, {"segments", r.segments()}, {"passes", passes},
+          {"tf_s", f.tf_s}, {"margin", num(f.margin)}, {"regularisation", num(f.regularisation)},
+          {"miss_km", f.miss_m * 1e-3}, {"along_km", f.along_m * 1e-3}, {"cross_km", f.cross_m * 1e-3},
+          {"altitude_err_km", f.altitude_err_m * 1e-3}, {"mach", f.mach}, {"gamma_deg", f.gamma_rad * kDeg},
+          {"heading_err_deg", f.heading_err_rad * kDeg}, {"final_lat_deg", f.final_lat_rad * kDeg},
+          {"final_lon_deg", f.final_lon_rad * kDeg}, {"max_heat_flux_kW_m2", f.max_heat_flux_Wpm2 * 1e-3},
+          {"max_g", f.max_load_g}, {"max_q_kPa", f.max_q_Pa * 1e-3},
+          {"max_q_alpha_kPa_deg", f.max_q_alpha_Pa_rad * 1e-3 * kDeg},
+          {"margins",
+           {{"heat_flux", num(f.margin_heat_flux)}, {"load_factor", num(f.margin_load)},
+            {"dynamic_pressure", num(f.margin_q)}, {"q_alpha", num(f.margin_q_alpha)}, {"range", num(f.margin_range)},
+            {"altitude", num(f.margin_altitude)}, {"mach", num(f.margin_mach)}, {"flight_path", num(f.margin_gamma)},
+            {"heading", num(f.margin_heading)}}},
+          {"all_satisfied", f.all_satisfied}};
 }
 
 std::vector<TrackPoint> track(const EntryProblem& pb, const Trajectory& tr) {

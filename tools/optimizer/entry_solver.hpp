@@ -5,8 +5,11 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "dynamics/simulator.hpp"
 #include "entry_problem.hpp"
@@ -32,6 +35,8 @@ struct EntrySolveOptions {
   double alpha_band_rad = 0.0;
   SolverOptions solver = default_solver();
   RefinementOptions refinement;
+  /// Footprint modes: EntryProblem's extent limit (a step of the footprint's homotopy).
+  double extent_limit_m = std::numeric_limits<double>::infinity();
   /// Newton on the exact Hessian of the Lagrangian (second-order AD of the smooth models),
   /// piecewise-linear controls (the free Hermite-Simpson midpoint control zig-zags and its
   /// open-loop replay missed by 150-350 km). A warm start sits next to the optimum, so the
@@ -95,6 +100,9 @@ EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Traje
 
 /// Figures of a trajectory of `problem` (double evaluation of the same functions).
 EntryFigures evaluate_figures(const EntryProblem& problem, const Trajectory& trajectory);
+
+/// A solve for the record: status, iterations, wall time, its mesh passes and the figures.
+nlohmann::json result_json(const EntryResult& r);
 
 /// The trajectory's points in the referee's terms (one per collocation point).
 struct TrackPoint {

@@ -169,18 +169,25 @@ OracleResult solve_oracle(const config::Mission& mission, std::uint64_t seed, bo
   return out;
 }
 
-OracleResult run_oracle(const config::Mission& mission, std::uint64_t seed, bool dispersed, const OracleOptions& options) {
-  std::vector<FlownSample> flown;
+GuidanceFlight fly_guidance(const config::Mission& mission, std::uint64_t seed, bool dispersed) {
+  GuidanceFlight f;
   auto record = [&](const truth::Simulator& sim, double alpha, double sigma) {
     FlownSample s;
     s.t_s = sim.time_s();
     for (size_t i = 0; i < 6; ++i) s.y[i] = sim.state()[i];
     s.alpha_rad = alpha;
     s.sigma_rad = sigma;
-    if (!flown.empty() && s.t_s <= flown.back().t_s) flown.back() = s;  // the end sample repeats the last tick
-    else flown.push_back(s);
+    if (!f.samples.empty() && s.t_s <= f.samples.back().t_s) f.samples.back() = s;  // the end sample repeats the last tick
+    else f.samples.push_back(s);
   };
-  tools::ClosedLoopResult cl = tools::run_closed_loop(mission, seed, dispersed, {}, false, record);
+  f.result = tools::run_closed_loop(mission, seed, dispersed, {}, false, record);
+  return f;
+}
+
+OracleResult run_oracle(const config::Mission& mission, std::uint64_t seed, bool dispersed, const OracleOptions& options) {
+  GuidanceFlight flight = fly_guidance(mission, seed, dispersed);
+  tools::ClosedLoopResult& cl = flight.result;
+  const std::vector<FlownSample>& flown = flight.samples;
   tools::PulloutBound pullout = tools::wings_level_pullout_bound(mission, seed, dispersed);
   OracleResult out;
   const bool bound_exceeded = pullout.error.empty() && !pullout.exceeded.empty();

@@ -67,6 +67,13 @@ struct OracleResult {
   double solve_s = 0.0;            // every attempt's solves
 };
 
+/// The guidance's closed-loop flight of a run, with its trajectory sampled at every GNC tick.
+struct GuidanceFlight {
+  tools::ClosedLoopResult result;
+  std::vector<FlownSample> samples;  // ends at the run's end event
+};
+GuidanceFlight fly_guidance(const config::Mission& mission, std::uint64_t seed, bool dispersed);
+
 /// The truth simulator of a run (the draw of run `seed` when dispersed), as every run tool makes it.
 std::unique_ptr<truth::Simulator> make_run_simulator(const config::Mission& mission, std::uint64_t seed, bool dispersed,
                                                      std::string* error);

@@ -53,7 +53,8 @@ std::vector<double> refine(const std::vector<double>& axis, double step) {
 
 }  // namespace
 
-SmoothPiecewiseLinear::SmoothPiecewiseLinear(const std::vector<double>& x, const std::vector<double>& y) {
+SmoothPiecewiseLinear::SmoothPiecewiseLinear(const std::vector<double>& x, const std::vector<double>& y,
+                                             double max_deviation) {
   const size_t n = std::min(x.size(), y.size());
   if (n == 0) return;
   has_value_ = true;
@@ -69,7 +70,7 @@ SmoothPiecewiseLinear::SmoothPiecewiseLinear(const std::vector<double>& x, const
     const double right = k + 1 < n ? x[k + 1] - x[k] : x[n - 1] - x[n - 2];
     corner_x_.push_back(x[k]);
     slope_jump_.push_back(jump);
-    width_.push_back(0.25 * std::min(left, right));
+    width_.push_back(std::min(0.25 * std::min(left, right), max_deviation / (smooth_ramp(0.0).r * std::fabs(jump))));
   }
   // The ramps are zero left of every window: y0 is the value at the far left.
 }

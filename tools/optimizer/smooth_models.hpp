@@ -62,13 +62,14 @@ T smooth_step(const T& t) {
   return truth::scalar::chain(t, f, f1, f2);
 }
 
-/// A piecewise-linear table y(x) (held constant outside its range) with every corner rounded
-/// over a window of a quarter of the shorter neighbouring interval: C2, equal to the table
-/// outside the windows.
+/// A piecewise-linear table y(x) (held constant outside its range) with every corner rounded:
+/// C2, equal to the table outside the windows, at most `max_deviation` from it inside them
+/// (the deviation at a corner is R(0) = 5/32 of the slope jump times the half-width); each
+/// window's half-width is also at most a quarter of the shorter neighbouring interval.
 class SmoothPiecewiseLinear {
  public:
   SmoothPiecewiseLinear() = default;
-  SmoothPiecewiseLinear(const std::vector<double>& x, const std::vector<double>& y);
+  SmoothPiecewiseLinear(const std::vector<double>& x, const std::vector<double>& y, double max_deviation);
   template <class T>
   T operator()(const T& x) const {
     const double xv = truth::scalar::value(x);
