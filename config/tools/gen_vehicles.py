@@ -53,7 +53,7 @@ def fmt_row(v):
 def wrapped_row(name, v, per_line=12):
     """`name = [...]` over several lines (TOML multi-line array): no config line over 300 characters."""
     chunks = [", ".join("%.6f" % x for x in v[i:i + per_line]) for i in range(0, len(v), per_line)]
-    return "%s = [\n%s\n]\n" % (name, ",\n".join("  " + c for c in chunks))
+    return "%s = [%s]\n" % (name, ",\n  ".join(chunks))
 
 def table(name, rows):
     return "%s = [\n%s\n]\n" % (name, ",\n".join("  " + fmt_row(r) for r in rows))
