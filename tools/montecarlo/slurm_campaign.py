@@ -47,7 +47,7 @@ def fail(msg, code=2):
 
 
 def parse_args(argv):
-    ap = argparse.ArgumentParser(prog="tools/mc --slurm", add_help=True,
+    ap = argparse.ArgumentParser(prog="tools/mc --slurm", add_help=True, allow_abbrev=False,
                                  description="Monte Carlo campaign as a Slurm array job + merge job")
     ap.add_argument("--slurm", action="store_true", required=True)
     ap.add_argument("--out", help="campaign directory (on the shared filesystem)")
