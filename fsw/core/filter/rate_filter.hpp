@@ -24,7 +24,6 @@ class RateFilter {
 
   double value() const { return x_; }
   double rate() const { return v_; }
-  bool initialised() const { return dt_s_ > 0.0; }
 
  private:
   double rate_max_ = 0.0;
