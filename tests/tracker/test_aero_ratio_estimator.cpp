@@ -154,29 +154,11 @@ TEST(EntryPlanner, RangingAlphaRestoresALowLiftOverDragPlan) {
 }
 
 // ------------------------------------------------------------------ first-order estimates
-struct EstimatorCase {
-  OnboardModels models;
-  TrackerParams params;
-  RelativeState state;
-  double alpha_rad = 0.0;
-};
-
-std::unique_ptr<EstimatorCase> x33_estimator_case() {
-  const X33Plan* plan = x33_plan();
-  if (plan == nullptr) return nullptr;
-  auto c = std::make_unique<EstimatorCase>();
-  if (init_from_mission(c->models, plan->mission) != Status::kOk) return nullptr;
-  const int k = plan->profile.n_points / 2;
-  c->state = level_state_on_profile(plan->profile, k);
-  c->alpha_rad = plan->profile.alpha_rad[k];
-  return c;
-}
-
 TEST(AeroRatioEstimator, DragRatioIsAFirstOrderFilterOfTheSensedRatioWithinItsBounds) {
   // The sensed drag K times the model's (at the height above the ellipsoid): from 1 the
   // estimate follows K - (K - 1) exp(-t / tau), tau = 20 s, to the 0.01 s step's discretisation;
   // a sensed ratio beyond [0.5, 2] is taken at the bound.
-  auto c = x33_estimator_case();
+  auto c = x33_mid_plan();
   ASSERT_NE(c, nullptr);
   RelativeState s = c->state;
   const double h_ellipsoid_m = s.radius_m - surface_radius_m(s.latitude_rad);
@@ -205,7 +187,7 @@ TEST(AeroRatioEstimator, DragRatioIsAFirstOrderFilterOfTheSensedRatioWithinItsBo
 }
 
 TEST(AeroRatioEstimator, LiftOverDragRatioIsAFirstOrderFilterOfTheSensedOverTheTableRatio) {
-  auto c = x33_estimator_case();
+  auto c = x33_mid_plan();
   ASSERT_NE(c, nullptr);
   RelativeState s = c->state;
   double cl, cd;
@@ -230,7 +212,7 @@ TEST(AeroRatioEstimator, LiftOverDragRatioIsAFirstOrderFilterOfTheSensedOverTheT
 }
 
 TEST(AeroRatioEstimator, ReferredStateScalesDragAndLiftByTheTablesCoefficientRatios) {
-  auto c = x33_estimator_case();
+  auto c = x33_mid_plan();
   ASSERT_NE(c, nullptr);
   const RelativeState& s = c->state;
   const double mach = c->models.mach(s.altitude_m, s.velocity_mps);

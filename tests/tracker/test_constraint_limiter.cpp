@@ -283,37 +283,19 @@ TEST(ConstraintLimiter, LoadReliefKeepsTheAlphaCommandWithinTheLoadLimit) {
 // (q = D / (C_D S/m), q alpha, the load factor with the lift scaled like the drag at the same
 // alpha, the heat flux (3.5) of the model at rho = 2 q / V^2), sits at the planned fraction
 // (0.97) of its limit.
-struct LimiterCase {
-  OnboardModels models;
-  TrackerParams params;
-  RelativeState state;
-  double alpha_rad = 0.0, cd = 0.0;
-};
-
-std::unique_ptr<LimiterCase> x33_limiter_case() {
-  const X33Plan* plan = x33_plan();
-  if (plan == nullptr) return nullptr;
-  auto c = std::make_unique<LimiterCase>();
-  if (init_from_mission(c->models, plan->mission) != Status::kOk) return nullptr;
-  const int k = plan->profile.n_points / 2;
-  c->state = level_state_on_profile(plan->profile, k);
-  c->alpha_rad = plan->profile.alpha_rad[k];
-  c->cd = c->models.drag_coefficient(c->alpha_rad, c->state.energy_Jpkg, c->state.altitude_m);
-  return c;
-}
-
 TEST(ConstraintLimiter, SensedDragLimitPutsEachConstraintAtItsPlannedFraction) {
-  auto c = x33_limiter_case();
+  auto c = x33_mid_plan();
   ASSERT_NE(c, nullptr);
   const RelativeState& s = c->state;
-  const double q = s.drag_mps2 / (c->cd * c->models.area_over_mass());
+  const double cd = c->models.drag_coefficient(c->alpha_rad, s.energy_Jpkg, s.altitude_m);
+  const double q = s.drag_mps2 / (cd * c->models.area_over_mass());
   const double lod = s.lift_mps2 / s.drag_mps2;
   auto limit_with = [&](const TrackerLimits& limits) {
     ConstraintLimiter limiter;
     limiter.init(c->models, c->params, limits);
-    return limiter.sensed_drag_limit_mps2(s, c->alpha_rad, c->cd);
+    return limiter.sensed_drag_limit_mps2(s, c->alpha_rad, cd);
   };
-  auto q_at = [&](double drag) { return drag / (c->cd * c->models.area_over_mass()); };
+  auto q_at = [&](double drag) { return drag / (cd * c->models.area_over_mass()); };
   auto heat_at = [&](double drag) {
     return c->models.heat_flux_Wpm2(2.0 * q_at(drag) / (s.velocity_mps * s.velocity_mps), s.velocity_mps, c->alpha_rad);
   };
@@ -353,10 +335,10 @@ TEST(ConstraintLimiter, LoadReliefLowersAlphaToTheLoadLimitAndNotBelowItsFloor) 
   // Independent truth: a fine scan of the table's resultant coefficient C_R = hypot(C_L, C_D)
   // down from the command for the alpha at which the sensed aerodynamic acceleration, scaled by
   // C_R(alpha) / C_R(alpha_flown), meets 0.97 of the load limit.
-  auto c = x33_limiter_case();
+  auto c = x33_mid_plan();
   ASSERT_NE(c, nullptr);
   const RelativeState& s = c->state;
-  const double mach = c->models.mach(s.altitude_m, s.velocity_mps);
+  const double mach = c->mach;
   auto c_r = [&](double a) {
     double cl, cd;
     c->models.aero().coefficients(a, mach, cl, cd);

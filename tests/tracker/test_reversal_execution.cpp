@@ -149,23 +149,10 @@ TEST(ReversalExecution, ModulationIsAllowedOnlyBelowTheBoundMargin) {
   EXPECT_TRUE(rev.modulation_allowed(50.0, 0.0, 1.0));   // no bound
 }
 
-// The X-33 aero at a terminal-phase profile point: alpha, Mach and the state.
-struct TerminalAero {
-  OnboardModels models;
-  RelativeState state;
-  double alpha_rad = 0.0, mach = 0.0;
-};
-
-std::unique_ptr<TerminalAero> x33_terminal_aero() {
+// The X-33 at a terminal-phase point of the plan, 120 s before TAEM.
+std::unique_ptr<X33Point> x33_terminal_aero() {
   const X33Plan* plan = x33_plan();
-  if (plan == nullptr) return nullptr;
-  auto a = std::make_unique<TerminalAero>();
-  if (init_from_mission(a->models, plan->mission) != Status::kOk) return nullptr;
-  const int k = profile_index_at_time_to_go(plan->profile, 120.0);
-  a->state = level_state_on_profile(plan->profile, k);
-  a->alpha_rad = plan->profile.alpha_rad[k];
-  a->mach = a->models.mach(a->state.altitude_m, a->state.velocity_mps);
-  return a;
+  return plan == nullptr ? nullptr : x33_point(profile_index_at_time_to_go(plan->profile, 120.0));
 }
 
 // Independent modulated alpha: bisection (60 steps) of C_L(alpha) = ratio C_L(alpha_ref) in

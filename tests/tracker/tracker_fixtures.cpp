@@ -34,6 +34,22 @@ RelativeState level_state_on_profile(const ReferenceProfile& p, int k) {
   return s;
 }
 
+std::unique_ptr<X33Point> x33_point(int k) {
+  const X33Plan* plan = x33_plan();
+  if (plan == nullptr) return nullptr;
+  auto a = std::make_unique<X33Point>();
+  if (init_from_mission(a->models, plan->mission) != Status::kOk) return nullptr;
+  a->state = level_state_on_profile(plan->profile, k);
+  a->alpha_rad = plan->profile.alpha_rad[k];
+  a->mach = a->models.mach(a->state.altitude_m, a->state.velocity_mps);
+  return a;
+}
+
+std::unique_ptr<X33Point> x33_mid_plan() {
+  const X33Plan* plan = x33_plan();
+  return plan == nullptr ? nullptr : x33_point(plan->profile.n_points / 2);
+}
+
 std::unique_ptr<MidProfile> mid_profile_tracker(double profile_fraction) {
   const X33Plan* plan = x33_plan();
   if (plan == nullptr) return nullptr;

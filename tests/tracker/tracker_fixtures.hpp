@@ -22,6 +22,18 @@ struct X33Plan {
 };
 const X33Plan* x33_plan();
 
+/// The X-33 on-board models, default tracker parameters, and the level state, alpha and Mach of
+/// point k of the plan.
+struct X33Point {
+  OnboardModels models;
+  TrackerParams params;
+  RelativeState state;
+  double alpha_rad = 0.0, mach = 0.0;
+};
+std::unique_ptr<X33Point> x33_point(int k);
+/// The same at the middle point of the plan.
+std::unique_ptr<X33Point> x33_mid_plan();
+
 /// Level flight at profile point k: its radius, speed, heading, energy, drag and lift.
 RelativeState level_state_on_profile(const ReferenceProfile& p, int k);
 
