@@ -53,7 +53,7 @@ void ConstraintLimiter::init(const OnboardModels& models, const TrackerParams& p
 double ConstraintLimiter::pullout_drag_mps2(const RelativeState& s, double sigma_now_rad) const {
   const double D = s.drag_mps2;
   if (!(D > params_->min_drag_mps2)) return D;
-  const double dlnrho_dr = models_->dlnrho_dr_fd(s.altitude_m, kDensityGradientStep_m);
+  const double dlnrho_dr = models_->dlnrho_dr_fd(s.altitude_m, kTrackerDensityGradientStep_m);
   if (!(dlnrho_dr < 0.0)) return D;
   // Net downward acceleration without lift, with the Earth-rate term of (2.45) (an eastbound
   // vehicle near orbital speed is held up by it).

@@ -187,7 +187,7 @@ DragLoopCommand EntryTracker::drag_command(const CycleContext& c, const RefPoint
   const double V = s.velocity_mps, D = s.drag_mps2, V2 = V * V;
   // Actual D' from (7.14): density gradient and C_D' from the on-board models, alpha along the
   // plan (which may differ from the mission profile: ranging alpha).
-  const double dlnrho_dr = models_.dlnrho_dr_fd(s.altitude_m, kDensityGradientStep_m);
+  const double dlnrho_dr = models_.dlnrho_dr_fd(s.altitude_m, kTrackerDensityGradientStep_m);
   const double de = kCdSlopeEnergyStep * entry_energy_Jpkg_;
   const double cd_slope =
       models_.drag_coefficient_slope(ref.alpha + ref.alpha_prime * de, s.energy_Jpkg + de, s.altitude_m,

@@ -14,8 +14,9 @@
 namespace reentry::fsw {
 
 /// Half-step of the tracker's central difference of d(ln rho)/dr on the on-board atmosphere
-/// ((7.14)-(7.16)): the drag loop's D' and the pull-out's local scale height.
-inline constexpr double kDensityGradientStep_m = 100.0;
+/// ((7.14)-(7.16)) at the sensed altitude: the drag loop's D' and the pull-out's local scale
+/// height (the planner takes its own step for its grid).
+inline constexpr double kTrackerDensityGradientStep_m = 100.0;
 /// Bisection steps of the alpha searches (load relief, reversal modulation): 2^-30 of the
 /// searched alpha interval.
 inline constexpr int kAlphaBisectionSteps = 30;
