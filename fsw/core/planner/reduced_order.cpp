@@ -16,6 +16,10 @@ constexpr int kRangeBisections = 16;
 constexpr double kMinReversalSpan_Jpkg = 1e-9;
 // "No reversal": a reversal energy this far below TAEM is never reached.
 constexpr double kNoReversalEnergyOffset_Jpkg = 1e12;
+// Span (and zero bank) of a reversal whose start bank is not known yet: used while the run
+// reaches the start (no point of it lies below the start energy by more than rounding) and
+// for "no reversal".
+constexpr double kUnsetReversalSpan_Jpkg = 1.0;
 
 // Grid values interpolated at one flown range, shared by the RK4 stages evaluated there.
 struct RangePoint {
@@ -165,7 +169,7 @@ Status fly_without_reversal(const ReducedOrderInput& sys, const RopState& start,
                             RopTrack* track, RopFlight& out) {
   const int n = sys.rk4_steps;
   const double h = sys.range.s_total_m / n;
-  out.reversal = ReversalModel{first_sign, sys.taem_energy_Jpkg - kNoReversalEnergyOffset_Jpkg, 1.0, 0.0};
+  out.reversal = ReversalModel{first_sign, sys.taem_energy_Jpkg - kNoReversalEnergyOffset_Jpkg, kUnsetReversalSpan_Jpkg, 0.0};
   RangeLookup lookup(sys);
   base[0] = start;
   for (int i = 0; i < n; ++i) rk4(sys, out.reversal, lookup, i * h, base[i], h, base[i + 1]);
@@ -190,7 +194,7 @@ Status fly_with_reversal(const ReducedOrderInput& sys, const RopTrack& base, int
   int k;
   double w;
   // Up to the reversal start: the first side (no ramp yet, its bank still unknown).
-  out.reversal = ReversalModel{first_sign, lookup.energy_at(s_rev, k, w), 1.0, 0.0};
+  out.reversal = ReversalModel{first_sign, lookup.energy_at(s_rev, k, w), kUnsetReversalSpan_Jpkg, 0.0};
   RopState y = base[j];
   const double h_part = s_rev - j * h;  // >= 0
   if (h_part > 0.0) rk4(sys, out.reversal, lookup, j * h, y, h_part, y);
