@@ -356,6 +356,18 @@ TEST(RangingAlphaStage, AlphaOfMaximumLiftOverDragAndTheBlendRamps) {
   for (int k = 0; k < kN; ++k) EXPECT_EQ(grid->alpha_rad[k], 0.3) << k;
 }
 
+TEST(PlannerParamsRelations, BreakpointClampsLeaveAnInterval) {
+  // E1 in [TAEM + e1_min, E0 - gap] and E2 in [TAEM + gap, E1 - gap] (shares of the span):
+  // both intervals are non-empty only for e1_min + gap <= 1 and 2 gap <= e1_min.
+  PlannerParams p;
+  EXPECT_EQ(planner_params_inconsistency(p), nullptr);
+  p.segment_min_span_fraction = 0.06;
+  EXPECT_STREQ(planner_params_inconsistency(p), "planner.segment_min_span_fraction");
+  p = PlannerParams{};
+  p.e1_min_span_fraction = 0.99;
+  EXPECT_STREQ(planner_params_inconsistency(p), "planner.e1_min_span_fraction");
+}
+
 // ---------------------------------------------------------------- geometry (§7.4, DESIGN §7)
 TEST(PlannerGeometry, HorusPlanStartsFromThePublishedMissionGeometry) {
   // The planner's planning-point geometry for the HORUS entry: b = 57.79 deg, A = 68.57 deg,
