@@ -314,6 +314,36 @@ std::string LogFraming::describe() const {
   return s;
 }
 
+namespace {
+
+// The first plausible event at or after `pos` (-1: none); its lengths in chan_len, data_len.
+std::int64_t next_plausible_event(const std::uint8_t* f, std::int64_t size, std::int64_t pos, std::int64_t& chan_len,
+                                  std::int64_t& data_len) {
+  if (plausible_event(f, size, pos, chan_len, data_len)) return pos;
+  for (std::int64_t next = pos + 1; next + kEventHeaderBytes <= size; ++next) {
+    if (f[next] == kSync[0] && plausible_event(f, size, next, chan_len, data_len)) return next;
+  }
+  return -1;
+}
+
+// A seal against the digest of the events before it.
+void judge_seal(const LogEventView& ev, const LogDigest& digest, LogFraming& fr) {
+  reentry::log_seal_t seal{};
+  const bool decodes = seal.decode(ev.data, 0, ev.size) == ev.size;
+  if (decodes && (seal.events != digest.events() || seal.bytes != digest.bytes() ||
+                  seal.crc32 != static_cast<std::int64_t>(digest.crc()))) {
+    fr.seal_problem = "the seal does not match the events before it (" + std::to_string(digest.events()) +
+                      " events read, " + std::to_string(seal.events) + " sealed; CRC " +
+                      (seal.crc32 == static_cast<std::int64_t>(digest.crc()) ? "equal" : "differs") +
+                      "): bytes were changed, added or removed";
+  } else if (!decodes) {
+    fr.seal_problem = "the seal does not decode";
+  }
+  fr.seal_dropped = decodes ? seal.dropped : 0;
+}
+
+}  // namespace
+
 LogFraming read_event_log(const std::string& path, const std::function<bool(const LogEventView&)>& on_event) {
   LogFraming fr;
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -352,24 +382,12 @@ LogFraming read_event_log(const std::string& path, const std::function<bool(cons
   bool stopped = false;
   LogDigest digest;
   std::int64_t seal_at_event = -1;
-  reentry::log_seal_t seal{};
-  bool seal_decodes = false;
   for (;;) {
     std::int64_t chan_len = 0, data_len = 0;
-    if (!plausible_event(f, size, pos, chan_len, data_len)) {
-      // Damage: skip to the next plausible event, if any.
-      std::int64_t next = pos + 1;
-      bool found = false;
-      for (; next + kEventHeaderBytes <= size; ++next) {
-        if (f[next] == kSync[0] && plausible_event(f, size, next, chan_len, data_len)) {
-          found = true;
-          break;
-        }
-      }
-      if (!found) break;
-      fr.skipped_bytes += next - pos;
-      pos = next;
-    }
+    const std::int64_t next = next_plausible_event(f, size, pos, chan_len, data_len);
+    if (next < 0) break;
+    fr.skipped_bytes += next - pos;  // damage: skipped to the next plausible event
+    pos = next;
     LogEventView ev;
     ev.eventnum = be64(f + pos + 4);
     ev.timestamp_us = be64(f + pos + 12);
@@ -388,17 +406,7 @@ LogFraming read_event_log(const std::string& path, const std::function<bool(cons
     if (is_seal) {
       if (seal_at_event >= 0 && fr.seal_problem.empty()) fr.seal_problem = "more than one seal";
       seal_at_event = fr.events - 1;
-      seal_decodes = seal.decode(ev.data, 0, ev.size) == ev.size;
-      if (seal_decodes && (seal.events != digest.events() || seal.bytes != digest.bytes() ||
-                           seal.crc32 != static_cast<std::int64_t>(digest.crc()))) {
-        fr.seal_problem = "the seal does not match the events before it (" + std::to_string(digest.events()) +
-                          " events read, " + std::to_string(seal.events) + " sealed; CRC " +
-                          (seal.crc32 == static_cast<std::int64_t>(digest.crc()) ? "equal" : "differs") +
-                          "): bytes were changed, added or removed";
-      } else if (!seal_decodes) {
-        fr.seal_problem = "the seal does not decode";
-      }
-      fr.seal_dropped = seal_decodes ? seal.dropped : 0;
+      judge_seal(ev, digest, fr);
     } else {
       digest.add(ev.eventnum, ev.timestamp_us, ev.channel, ev.channel_len, ev.data, ev.size);
     }

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 
 #include "dynamics/open_loop.hpp"
@@ -25,6 +27,38 @@ std::unique_ptr<truth::Simulator> make_run_simulator(const config::Mission& miss
   if (!sim) *error = "simulator: " + *error;
   return sim;
 }
+// The trace CSV of a run (header written); nullptr and `error` when it cannot be created.
+std::FILE* open_trace(const std::string& path, std::string& error) {
+  if (path.empty()) return nullptr;
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) {
+    error = "write failed: " + path + ": " + std::strerror(errno);
+    return nullptr;
+  }
+  std::fprintf(f,
+               "t_s,h_km,V_mps,gamma_deg,chi_deg,lat_deg,lon_deg,range_to_taem_km,bearing_to_taem_deg,E_Jpkg,"
+               "D_mps2,D_ref_mps2,alpha_cmd_deg,sigma_cmd_deg,heading_err_deg,qdot_kWpm2,q_kPa,n_g,mach,phase,plan_seq\n");
+  return f;
+}
+
+void write_trace_row(std::FILE* trace, const truth::TruthSample& t, const fsw::exec::CycleOutput& out) {
+  constexpr double d = 180.0 / M_PI;
+  std::fprintf(trace, "%.1f,%.4f,%.2f,%.4f,%.3f,%.5f,%.5f,%.3f,%.3f,%.1f,%.4f,%.4f,%.3f,%.3f,%.3f,%.2f,%.3f,%.4f,%.3f,%d,%d\n",
+               t.t_s, t.h_m * 1e-3, t.V_mps, t.gamma_rad * d, t.chi_rad * d, t.lat_rad * d, t.lon_rad * d,
+               t.range_to_taem_m * 1e-3, t.heading_to_taem_rad * d, t.E_Jpkg, t.D_mps2, out.drag_ref_mps2,
+               out.alpha_rad * d, out.sigma_rad * d, out.heading_err_rad * d, t.qdot_Wpm2 * 1e-3, t.q_Pa * 1e-3, t.n_g,
+               t.mach, static_cast<int>(out.phase), static_cast<int>(out.plan_seq));
+}
+
+// Closes the trace; a write that failed on the way (disk full) is named in `error`.
+void close_trace(std::FILE* trace, const std::string& path, std::string& error) {
+  if (trace == nullptr) return;
+  const bool failed = std::ferror(trace) != 0;
+  errno = 0;
+  if ((std::fclose(trace) != 0 || failed) && error.empty())
+    error = "write failed: " + path + ": " + std::strerror(errno != 0 ? errno : EIO);
+}
+
 }  // namespace
 
 PulloutBound wings_level_pullout_bound(const config::Mission& mission, std::uint64_t seed, bool dispersed) {
@@ -63,12 +97,7 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
   const double dt = 1.0 / mission.guidance.gnc_rate_hz;
   double alpha_prev = 0.0, sigma_prev = 0.0;
   bool have_prev = false;
-  std::FILE* trace = trace_csv.empty() ? nullptr : std::fopen(trace_csv.c_str(), "w");
-  if (trace) {
-    std::fprintf(trace,
-                 "t_s,h_km,V_mps,gamma_deg,chi_deg,lat_deg,lon_deg,range_to_taem_km,bearing_to_taem_deg,E_Jpkg,"
-                 "D_mps2,D_ref_mps2,alpha_cmd_deg,sigma_cmd_deg,heading_err_deg,qdot_kWpm2,q_kPa,n_g,mach,phase,plan_seq\n");
-  }
+  std::FILE* trace = open_trace(trace_csv, r.trace_error);
   const int trace_every = std::max(1, static_cast<int>(std::lround(mission.guidance.gnc_rate_hz)));
   const auto max_ticks = static_cast<std::int64_t>(std::ceil(sim->settings().time_limit_s / dt)) + 2;
   for (std::int64_t k = 0; k < max_ticks && !sim->finished(); ++k) {
@@ -90,21 +119,12 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
         have_prev = true;
         sim->set_command(out.alpha_rad, out.sigma_rad);
         if (on_sample) on_sample(*sim, out.alpha_rad, out.sigma_rad);
-        if (trace && k % trace_every == 0) {
-          const truth::TruthSample t = sim->sample();
-          constexpr double d = 180.0 / M_PI;
-          std::fprintf(trace, "%.1f,%.4f,%.2f,%.4f,%.3f,%.5f,%.5f,%.3f,%.3f,%.1f,%.4f,%.4f,%.3f,%.3f,%.3f,%.2f,%.3f,%.4f,%.3f,%d,%d\n",
-                       t.t_s, t.h_m * 1e-3, t.V_mps, t.gamma_rad * d, t.chi_rad * d, t.lat_rad * d, t.lon_rad * d,
-                       t.range_to_taem_m * 1e-3, t.heading_to_taem_rad * d, t.E_Jpkg, t.D_mps2,
-                       out.drag_ref_mps2, out.alpha_rad * d,
-                       out.sigma_rad * d, out.heading_err_rad * d, t.qdot_Wpm2 * 1e-3, t.q_Pa * 1e-3, t.n_g,
-                       t.mach, static_cast<int>(out.phase), static_cast<int>(out.plan_seq));
-        }
+        if (trace && k % trace_every == 0) write_trace_row(trace, sim->sample(), out);
       }
     }
     sim->advance_to(static_cast<double>(k + 1) * dt);
   }
-  if (trace) std::fclose(trace);
+  close_trace(trace, trace_csv, r.trace_error);
   if (on_sample) on_sample(*sim, alpha_prev, sigma_prev);
   r.summary = sim->summary();
   r.verdict = truth::judge_mission(mission, r.summary, r.rates);

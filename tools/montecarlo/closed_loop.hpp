@@ -19,6 +19,7 @@ struct ClosedLoopResult {
   std::uint64_t seed = 0;
   bool dispersed = false;
   std::string error;                      // set when the run could not be started
+  std::string trace_error;                // the trace CSV could not be written (file and reason)
   truth::RunSummary summary;
   truth::MissionVerdict verdict;
   truth::CommandRateMaxima rates;
