@@ -3,7 +3,12 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <string>
 
 #include "transport/exit_status.hpp"
 
@@ -23,6 +28,21 @@ inline int parse_command_line(CLI::App& app, int argc, char** argv, const char* 
     return kExitUsage;
   }
   return -1;
+}
+
+/// An integer in [0, 2^63 - 1] written as decimal digits (no sign, no exponent, no wrap).
+inline CLI::Validator non_negative_integer() {
+  return CLI::Validator(
+      [](std::string& v) -> std::string {
+        if (v.empty() || v.find_first_not_of("0123456789") != std::string::npos)
+          return "value '" + v + "' is not an integer >= 0";
+        errno = 0;
+        const unsigned long long x = std::strtoull(v.c_str(), nullptr, 10);
+        if (errno == ERANGE || x > static_cast<unsigned long long>(std::numeric_limits<std::int64_t>::max()))
+          return "value '" + v + "' is beyond 2^63 - 1";
+        return {};
+      },
+      "INT>=0");
 }
 
 }  // namespace reentry::transport

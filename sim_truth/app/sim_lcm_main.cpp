@@ -70,7 +70,7 @@ struct Options {
 int parse_options(int argc, char** argv, Options& o) {
   CLI::App cli{"Truth simulator LCM process (SIL)", kTool};
   cli.add_option("--mission", o.mission_arg, "mission name or TOML file")->required();
-  auto* seed = cli.add_option("--seed", o.seed, "dispersion seed (absent: the nominal run)")->check(CLI::NonNegativeNumber);
+  auto* seed = cli.add_option("--seed", o.seed, "dispersion seed (absent: the nominal run)")->check(tx::non_negative_integer());
   cli.add_option("--mode", o.mode, "lockstep or realtime")->check(CLI::IsMember({"lockstep", "realtime"}));
   cli.add_option("--transport-delay-ticks", o.transport_delay, "command transport delay (default: mission)")
       ->check(CLI::Range(0, 1000));

@@ -134,6 +134,7 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
   r.planner_failures = c.planner_failures;
   r.planner_ms_max = c.planner_ms_max;
   r.cycle_us_max = c.cycle_us_max;
+  r.nav_rejected = c.invalid_nav;
   stack.executive->shutdown();
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

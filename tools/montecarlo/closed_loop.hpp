@@ -29,6 +29,7 @@ struct ClosedLoopResult {
   int planner_failures = 0;
   double planner_ms_max = 0.0;
   double cycle_us_max = 0.0;
+  int nav_rejected = 0;                   // navigation samples the executive refused (a true flight: none)
   double wall_s = 0.0;
 };
 

@@ -761,7 +761,7 @@ int parse_options(int argc, char** argv, Options& o) {
   app.add_option("--mission", o.mission_arg, "mission name or TOML file");
   app.add_option("--runs", o.runs, "number of runs of the whole campaign")->check(CLI::Range(1, kRunsMax));
   app.add_option("--seed", o.seed, "seed of run 0 (run r uses seed + r; 0 is a dispersed draw like any other)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(tx::non_negative_integer());
   app.add_option("--out", o.out, "output directory")->required()->check([](const std::string& v) {
     return v.empty() ? std::string("an empty --out names no directory") : std::string();
   });
