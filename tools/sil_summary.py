@@ -35,8 +35,8 @@ def link_state(a, s, g, problems):
     """Who died or lost the link, and who detected it."""
     sim_rc, fsw_rc, stopped = a["sim_rc"], a["fsw_rc"], a["fsw_stopped"]
     link = {"sim_exit": sim_rc, "fsw_exit": fsw_rc, "died": None, "detected_by": None, "detection_ms": None}
-    if a["interrupted"]:
-        return link  # both were asked to stop: nobody died
+    if a["interrupted"] or USAGE in (sim_rc, fsw_rc):
+        return link  # both were asked to stop, or the mission was refused: nobody died
     if died(sim_rc):
         link["died"] = "simulator"
         problems.append("the simulator died (%s)" % died(sim_rc))

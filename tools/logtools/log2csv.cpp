@@ -75,6 +75,7 @@ class CsvOutput {
       *out.points << buf_;
     }
     check(ch + ".csv", *out.rows);
+    if (out.points) check(ch + "_points.csv", *out.points);
   }
 
   /// Flushes and closes every file; false after any write failure.
@@ -112,8 +113,11 @@ class CsvOutput {
   }
 
   bool check(const std::string& name, std::ofstream& f, bool close = false) {
-    errno = 0;
-    if (close) f.close();
+    // errno still holds the reason of the write that failed (nothing since has touched it).
+    if (f && close) {
+      errno = 0;
+      f.close();
+    }
     if (f || !error_.empty()) return !!f;
     error_ = (fs::path(dir_) / name).string() + ": " + std::strerror(errno != 0 ? errno : EIO);
     return false;

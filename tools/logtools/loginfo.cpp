@@ -156,7 +156,7 @@ int main(int argc, char** argv) {
   if (as_json) print_json(log_path, scan, span_s, run, v, stats);
   else print_text(log_path, scan, span_s, run, v, stats);
   std::cout.flush();
-  errno = 0;
+  // errno still holds the reason of the write that failed.
   if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {
     std::fprintf(stderr, "loginfo: write failed: standard output: %s\n", std::strerror(errno != 0 ? errno : EIO));
     return tx::kExitWriteFailed;
