@@ -138,6 +138,7 @@ bool Executive::reacquire(const NavInput& nav, Fit fit) {
   // A sane sample the reference refuses extends the run of candidates when it is consistent
   // with the previous one; a long enough run means the reference was wrong: it is replaced.
   if (fit != Fit::kInconsistent && fit != Fit::kTooFar) return false;
+  if (candidate_run_ > 0 && nav.tick == candidate_tick_) return false;  // the same sample again (republished)
   const bool extends = candidate_run_ > 0 && consistent(candidate_state_, candidate_tick_, nav.state, nav.tick);
   candidate_run_ = extends ? candidate_run_ + 1 : 1;
   candidate_tick_ = nav.tick;

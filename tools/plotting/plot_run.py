@@ -325,7 +325,7 @@ def csv_of_log(run_dir, log_arg, csv_dir):
     have_log = os.path.isfile(log)
     if os.path.isdir(csv_dir):
         csvs = [os.path.join(csv_dir, n) for n in os.listdir(csv_dir) if n.endswith(".csv")]
-        if not have_log or (csvs and min(os.path.getmtime(c) for c in csvs) >= os.path.getmtime(log)):
+        if not have_log or not csvs or min(os.path.getmtime(c) for c in csvs) >= os.path.getmtime(log):
             return None
         for c in csvs:  # the CSV files of another log
             os.remove(c)
