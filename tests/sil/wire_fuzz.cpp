@@ -162,6 +162,14 @@ bool wait_cmd(Net& net, std::int64_t tick, bool flagged, const std::vector<std::
   return false;
 }
 
+// One command as the comparison reads it: tick, the bits of alpha and sigma, mode, plan.
+void write_command(std::ofstream& out, const reentry::guidance_cmd_t& cmd) {
+  std::uint64_t a = 0, s = 0;
+  std::memcpy(&a, &cmd.alpha_rad, 8);
+  std::memcpy(&s, &cmd.sigma_rad, 8);
+  out << cmd.tick << ' ' << a << ' ' << s << ' ' << static_cast<int>(cmd.mode) << ' ' << cmd.plan_seq << '\n';
+}
+
 int fuzz_guidance(const std::string& mission_arg, int ticks, int junk_per_tick, std::uint64_t seed,
                   const std::string& commands_path, const std::string& expect_path) {
   const auto loaded = reentry::config::load_mission(mission_arg);
@@ -204,10 +212,7 @@ int fuzz_guidance(const std::string& mission_arg, int ticks, int junk_per_tick, 
       std::fprintf(stderr, "wire_fuzz: no command for tick %lld (guidance dead or stuck)\n", static_cast<long long>(k));
       return 1;
     }
-    std::uint64_t a = 0, s = 0;
-    std::memcpy(&a, &cmd.alpha_rad, 8);
-    std::memcpy(&s, &cmd.sigma_rad, 8);
-    cmds << cmd.tick << ' ' << a << ' ' << s << ' ' << static_cast<int>(cmd.mode) << ' ' << cmd.plan_seq << '\n';
+    write_command(cmds, cmd);
     prev = cmd;
     have_prev = true;
     for (int j = 0; j < junk_per_tick; ++j, ++sent) {
