@@ -21,9 +21,6 @@ Status TrackerLaw::step(const RelativeState& s, double dt_s, bool /*has_profile*
   out.alpha_rad = alpha_filter.step(last.alpha_rad);
   out.sigma_rad = sigma_filter.step(last.sigma_rad);
   out.phase = last.phase;
-  out.drag_ref_mps2 = last.drag_ref_mps2;
-  out.drag_err_mps2 = last.drag_err_mps2;
-  out.heading_err_rad = last.heading_err_rad;
   out.lift_over_drag_scale = last.lift_over_drag_scale;
   out.tracker = last.telemetry;
   return Status::kOk;

@@ -258,7 +258,7 @@ TEST(NavFirstSample, WholeFlightsNeverTripTheWindows) {
     if (run.stress) m.dispersions = m.stress_dispersions;
     const auto r = reentry::tools::run_closed_loop(m, run.seed, run.seed != 0);
     ASSERT_EQ(r.error, "") << run.mission;
-    EXPECT_EQ(r.nav_rejected, 0) << run.mission << " seed " << run.seed;
+    EXPECT_EQ(r.counters.invalid_nav, 0) << run.mission << " seed " << run.seed;
   }
 }
 

@@ -93,9 +93,9 @@ json run_record(int run, const ClosedLoopResult& r) {
   j["max_q_alpha_kPa_deg"] = m.q_alpha_Pa_rad * 1e-3 * kDeg;
   j["heat_load_MJ_m2"] = f.Q_Jpm2 * 1e-6;
   j["violations"] = r.verdict.violations;
-  j["planner_runs"] = r.planner_runs;
-  j["plans_adopted"] = r.plans_adopted;
-  j["planner_ms_max"] = r.planner_ms_max;
+  j["planner_runs"] = r.counters.planner_runs;
+  j["plans_adopted"] = r.counters.plans_adopted;
+  j["planner_ms_max"] = r.counters.planner_ms_max;
   j["wall_s"] = r.wall_s;
   // A numerical failure of the truth simulation is a run that could not be flown, not a result.
   for (const double v : {f.lat_rad, f.lon_rad, f.gamma_rad, m.qdot_Wpm2, m.n_g, m.q_Pa, r.verdict.taem_miss_m}) {
@@ -774,7 +774,7 @@ int parse_options(int argc, char** argv, Options& o) {
   app.add_option("--dispersions", o.dispersion_set,
                  "dispersion set: reference ([dispersions], Gaussian 3 sigma) or stress ([stress_dispersions])")
       ->check(CLI::IsMember({"reference", "stress"}));
-  app.add_flag("--trace", o.trace, "write each run's trajectory (1 Hz) to --out/traces/run_<seed>.csv");
+  app.add_flag("--trace", o.trace, "record each run (1 Hz, the SIL's channels) in --out/traces/run_<seed>.lcm");
   app.add_flag("--pullout-bound", o.pullout_bound,
                "also fly each run's entry descent wings level at alpha_max (the physics bound of the first pull-out)");
   app.add_flag("--guidance-knows-vehicle", o.knows_vehicle,
@@ -832,8 +832,8 @@ class RunFlier {
   json operator()(int r) const {
     const std::uint64_t seed = static_cast<std::uint64_t>(o_.seed) + static_cast<std::uint64_t>(r);
     const std::string set_name = o_.nominal ? "nominal" : o_.dispersion_set;
-    const std::string trace_csv =
-        o_.trace ? (fs::path(o_.out) / "traces" / ("run_" + std::to_string(seed) + ".csv")).string() : std::string();
+    const std::string trace_log =
+        o_.trace ? (fs::path(o_.out) / "traces" / ("run_" + std::to_string(seed) + ".lcm")).string() : std::string();
     json rec;
     if (o_.oracle) {
       reentry::optimal::OracleOptions oo;
@@ -848,7 +848,7 @@ class RunFlier {
       rec["feasible"] = o.feasible;
       rec["pullout_bound"] = pullout_record(o.pullout);
     } else {
-      const ClosedLoopResult res = reentry::tools::run_closed_loop(m_, seed, !o_.nominal, trace_csv, o_.knows_vehicle);
+      const ClosedLoopResult res = reentry::tools::run_closed_loop(m_, seed, !o_.nominal, trace_log, o_.knows_vehicle);
       rec = run_record(r, res);
       if (!res.trace_error.empty()) rec["trace_error"] = res.trace_error;  // the flight itself is whole
     }
@@ -961,7 +961,8 @@ bool prepare_traces(const fs::path& out) {
   const fs::path traces = out / "traces";
   for (const auto& entry : fs::directory_iterator(traces, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.rfind("run_", 0) == 0 && entry.path().extension() == ".csv") fs::remove(entry.path(), ec);
+    const bool trace = entry.path().extension() == ".lcm" || entry.path().extension() == ".csv";
+    if (name.rfind("run_", 0) == 0 && trace) fs::remove(entry.path(), ec);
   }
   fs::create_directories(traces, ec);
   if (!ec && fs::is_directory(traces, ec)) return true;
