@@ -142,7 +142,11 @@ def last_line(out, name):
         return "(no message)"
 
 
-def print_summary(summary):
+def print_summary(summary, out):
+    if summary["mission"] is None:
+        print("summary: none: the simulator wrote no summary (see %s/sim_err.txt)" % out)
+        return
+
     def f(k, fmt="%.2f"):
         v = summary.get(k)
         return fmt % v if isinstance(v, (int, float)) and not isinstance(v, bool) else "n/a"
@@ -174,8 +178,9 @@ def main():
             out.write("\n")
     except OSError as e:
         print("tools/sil: write failed: %s: %s" % (path, e.strerror or e), file=sys.stderr)
-        rc, why = (rc if rc > 128 else WRITE_FAILED), None
-    print_summary(summary)
+        if rc < 128 and rc != WRITE_FAILED:
+            rc, why = WRITE_FAILED, None
+    print_summary(summary, a["out"])
     for p in problems:
         print("tools/sil: " + p, file=sys.stderr)
     if why:
