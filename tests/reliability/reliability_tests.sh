@@ -28,7 +28,8 @@
 #   mc_merge         shards of other missions, seeds, shard counts, a missing shard, run -1, run
 #                    1e12, a string miss_km: refused (2) with the reason; nothing written.
 #   mc_args          --seed -1, --runs 2e9, --shard 1/3x, --out without a value, a mission the
-#                    simulator cannot fly: 2 at once; progress into a file: plain lines, no frames.
+#                    simulator cannot fly: 2 at once; progress into a file (a campaign, an oracle
+#                    campaign): plain lines, no frames.
 set -u
 case_name="$1"; dir="$2"
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -316,6 +317,11 @@ PY
     ! grep -q $'\r' "$dir/progress.txt" || fail "carriage-return frames in a log file"
     n=$(grep -c "runs, .* elapsed" "$dir/progress.txt")
     (( n >= 1 && n <= 11 )) && echo "ok: tools/mc into a file: $n plain progress lines" || fail "$n progress lines"
+    # The oracle's worker processes report through the same progress (runs its flights decide).
+    "$m" --mission x33 --runs 4 --seed 7 --jobs 2 --oracle --out "$dir/oracle" > "$dir/oracle.txt" 2>&1 || fail "oracle campaign"
+    ! grep -q $'\r' "$dir/oracle.txt" || fail "carriage-return frames in the oracle's log file"
+    n=$(grep -c "runs, .* elapsed" "$dir/oracle.txt")
+    (( n >= 1 && n <= 11 )) && echo "ok: the oracle into a file: $n plain progress lines" || fail "oracle: $n progress lines"
     ;;
   *) die "unknown case $case_name" ;;
 esac
