@@ -2,11 +2,17 @@
 """The end of a tools/sil run: DIR/summary.json from what the two processes and the log tools
 reported, the printed summary and the exit status (the table in tools/README.md).
 
-sil_summary.py DIR SIM_RC FSW_RC FSW_STOPPED T0 T1 MERGE_RC MODE INTERRUPTED INFO_RC"""
+sil_summary.py DIR SIM_RC FSW_RC FSW_STOPPED T0 T1 MERGE_RC MODE INTERRUPTED INFO_RC MSGS
+
+MSGS holds what the processes printed (sim_err.txt, fsw.txt, merge.txt, logger.txt), kept outside
+DIR while they ran: their reasons survive a full DIR. They are copied into DIR here."""
 import json
 import os
+import shutil
 import signal
 import sys
+
+MESSAGE_FILES = ("sim_err.txt", "fsw.txt", "merge.txt", "logger.txt")
 
 OK, MISSION_FAILURE, USAGE, LINK_LOSS, LOG_INCOMPLETE, LOG_DAMAGED, TRANSPORT, WRITE_FAILED = 0, 1, 2, 3, 5, 6, 7, 8
 
@@ -119,10 +125,11 @@ def exit_status(summary, a, log_rc, processes_ok):
         return 128 + a["interrupted"], "interrupted by %s: both processes ended, their logs sealed" % \
             signal_name(a["interrupted"])
     if WRITE_FAILED in rcs or a["merge_rc"] == WRITE_FAILED or a["info_rc"] == WRITE_FAILED:
-        return WRITE_FAILED, "write failed: an output of the run is not whole (see %s/sim_err.txt, fsw.txt, " \
-                             "merge.txt)" % a["out"]
+        said = [line for name in MESSAGE_FILES for line in lines(a["msgs"], name) if "write failed" in line]
+        return WRITE_FAILED, "write failed: an output of the run is not whole: %s" % \
+            ("; ".join(said) if said else "see %s/sim_err.txt, fsw.txt, merge.txt" % a["out"])
     if USAGE in rcs:
-        return USAGE, "the mission was refused: %s" % last_line(a["out"], "sim_err.txt" if a["sim_rc"] == USAGE
+        return USAGE, "the mission was refused: %s" % last_line(a["msgs"], "sim_err.txt" if a["sim_rc"] == USAGE
                                                                  else "fsw.txt")
     if TRANSPORT in rcs:
         return TRANSPORT, "the network failed (see %s/sim_err.txt, fsw.txt)" % a["out"]
@@ -133,18 +140,36 @@ def exit_status(summary, a, log_rc, processes_ok):
     return (OK if summary["success"] else MISSION_FAILURE), None
 
 
-def last_line(out, name):
+def lines(msgs, name):
+    """The non-empty lines a process printed, [] when it printed nothing."""
     try:
-        with open(os.path.join(out, name)) as f:
-            lines = [l.strip() for l in f if l.strip()]
-        return lines[-1] if lines else "(no message)"
+        with open(os.path.join(msgs, name), errors="replace") as f:
+            return [line.strip() for line in f if line.strip()]
     except OSError:
-        return "(no message)"
+        return []
 
 
-def print_summary(summary, out):
+def last_line(msgs, name):
+    said = lines(msgs, name)
+    return said[-1] if said else "(no message)"
+
+
+def copy_messages(a):
+    """The processes' messages into DIR; a copy that fails is a write failure, named."""
+    for name in MESSAGE_FILES:
+        src = os.path.join(a["msgs"], name)
+        if not os.path.exists(src):
+            continue
+        try:
+            shutil.copyfile(src, os.path.join(a["out"], name))
+        except OSError as e:
+            return "%s: %s" % (os.path.join(a["out"], name), e.strerror or e)
+    return None
+
+
+def print_summary(summary, a):
     if summary["mission"] is None:
-        print("summary: none: the simulator wrote no summary (see %s/sim_err.txt)" % out)
+        print("summary: none: the simulator wrote no summary (its last message: %s)" % last_line(a["msgs"], "sim_err.txt"))
         return
 
     def f(k, fmt="%.2f"):
@@ -165,9 +190,15 @@ def print_summary(summary, out):
 def main():
     v = sys.argv[1:]
     a = {"out": v[0], "sim_rc": int(v[1]), "fsw_rc": int(v[2]), "fsw_stopped": int(v[3]) == 1, "t0": float(v[4]),
-         "t1": float(v[5]), "merge_rc": int(v[6]), "mode": v[7], "interrupted": int(v[8]), "info_rc": int(v[9])}
+         "t1": float(v[5]), "merge_rc": int(v[6]), "mode": v[7], "interrupted": int(v[8]), "info_rc": int(v[9]),
+         "msgs": v[10]}
     summary, problems, log_rc, processes_ok = build_summary(a)
     rc, why = exit_status(summary, a, log_rc, processes_ok)
+    copy_failed = copy_messages(a)
+    if copy_failed:
+        print("tools/sil: write failed: %s" % copy_failed, file=sys.stderr)
+        if rc < 128 and rc != WRITE_FAILED:
+            rc, why = WRITE_FAILED, None
     summary["exit_code"] = rc
     summary["exit"] = {0: "ok", 1: "mission_failure", 2: "usage", 3: "link_loss", 5: "log_incomplete",
                        6: "log_damaged", 7: "transport_error", 8: "write_failed"}.get(rc, "interrupted")
@@ -180,7 +211,7 @@ def main():
         print("tools/sil: write failed: %s: %s" % (path, e.strerror or e), file=sys.stderr)
         if rc < 128 and rc != WRITE_FAILED:
             rc, why = WRITE_FAILED, None
-    print_summary(summary, a["out"])
+    print_summary(summary, a)
     for p in problems:
         print("tools/sil: " + p, file=sys.stderr)
     if why:

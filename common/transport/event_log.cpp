@@ -114,7 +114,7 @@ void EventLogWriter::note_io_error() {
 
 std::string EventLogWriter::error() const {
   if (!io_error()) return {};
-  return "cannot write log '" + path_ + "': " + std::strerror(io_errno_.load(std::memory_order_relaxed)) + " (" +
+  return path_ + ": " + std::strerror(io_errno_.load(std::memory_order_relaxed)) + " (log: " +
          std::to_string(written()) + " of " + std::to_string(recorded()) + " records written)";
 }
 
@@ -132,7 +132,7 @@ bool EventLogWriter::open(const std::string& path, std::size_t ring_bytes, WhenF
   errno = 0;
   file_ = std::make_unique<lcm::LogFile>(path, "w");
   if (!file_->good()) {
-    error = "cannot create log '" + path + "': " + std::strerror(errno);
+    error = path + ": " + std::strerror(errno) + " (the log cannot be created)";
     file_.reset();
     return false;
   }

@@ -83,7 +83,7 @@ class EventLogWriter {
   std::int64_t dropped() const { return dropped_.load(std::memory_order_relaxed); }
   std::int64_t written() const { return written_.load(std::memory_order_relaxed); }
   bool io_error() const { return io_error_.load(std::memory_order_acquire); }
-  /// "cannot write log '<path>': <reason> (<n> of <m> records written)" after a write error, else "".
+  /// "<path>: <reason> (log: <n> of <m> records written)" after a write error, else "".
   std::string error() const;
   const std::string& path() const { return path_; }
   double max_wait_s = 10.0;

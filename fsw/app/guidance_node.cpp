@@ -467,7 +467,7 @@ bool GuidanceNode::write_status_json(const std::string& path, int exit_code) con
     << "}\n";
   f.close();
   if (!f) {
-    std::fprintf(stderr, "reentry_fsw: write failed: status '%s': %s\n", path.c_str(), std::strerror(errno));
+    std::fprintf(stderr, "reentry_fsw: write failed: %s: %s\n", path.c_str(), std::strerror(errno));
     return false;
   }
   return true;

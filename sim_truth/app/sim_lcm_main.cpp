@@ -449,7 +449,7 @@ bool SimProcess::write_summary(const reentry::truth::RunSummary& summary, const 
   out << j.dump(2) << "\n";
   out.close();
   if (!out) {
-    std::fprintf(stderr, "%s: write failed: summary '%s': %s\n", kTool, o_.summary_path.c_str(), std::strerror(errno));
+    std::fprintf(stderr, "%s: write failed: %s: %s\n", kTool, o_.summary_path.c_str(), std::strerror(errno));
     return false;
   }
   return true;

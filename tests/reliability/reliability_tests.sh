@@ -38,7 +38,8 @@ sil="$repo/tools/sil" mc="$repo/tools/mc" replay="$repo/tools/replay"
 fails=0
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 die() { echo "FAIL: $*" >&2; exit 1; }
-rm -rf "$dir"; mkdir -p "$dir"
+rm -rf "$dir"; mkdir -p "$dir/tmp"
+export TMPDIR="$dir/tmp"  # what the tools leave in the temporary directory is checked, and stays here
 export REENTRY_SIL_PLOTS="${REENTRY_SIL_PLOTS:-0}"
 
 # expect RC WANT TEXT FILE WHAT: the exit status and a message in FILE.
@@ -168,6 +169,12 @@ PY
     sleep 1.5
     left=0; for p in $pids; do alive "$p" && { left=1; kill -KILL "$p"; }; done
     [[ $left -eq 0 ]] && echo "ok: SIGKILL to tools/sil: both children ended with it" || fail "SIGKILL: orphans left"
+    # Its folder of the processes' messages (outside --out) is removed by the next run.
+    ls -d "$TMPDIR/reentry_sil.$pid."* > /dev/null 2>&1 || fail "SIGKILL: no message folder of pid $pid to sweep"
+    "$sil" --mission x33 --out "$dir/after_kill" > "$dir/after_kill.txt" 2>&1
+    ls -d "$TMPDIR/reentry_sil.$pid."* > /dev/null 2>&1 && fail "SIGKILL: the killed run's message folder was left" ||
+      echo "ok: the next tools/sil removed the killed run's message folder"
+    [[ -z "$(ls -A "$TMPDIR")" ]] || fail "tools/sil left files in TMPDIR: $(ls "$TMPDIR" | head -3 | tr '\n' ' ')"
     ;;
   sil_setup)
     x33_copy
