@@ -49,8 +49,8 @@ struct Case {
 };
 
 TEST(MissionRules, LoaderAndSimulatorRefuseTheSameMissions) {
-  const std::string dir = (std::filesystem::temp_directory_path() / "reentry_mission_rules").string();
-  std::filesystem::create_directories(dir);
+  const reentry_test::TempDir tmp("reentry_mission_rules");
+  const std::string dir = tmp.str();
   const std::string garbage = dir + "/garbage_gravity.txt";
   std::ofstream(garbage) << "this is not a gravity field\n";
   const Case cases[] = {
@@ -84,7 +84,6 @@ TEST(MissionRules, LoaderAndSimulatorRefuseTheSameMissions) {
     const std::string err = sim_error(m);
     EXPECT_NE(err.find(c.key), std::string::npos) << c.name << ": the simulator said '" << err << "'";
   }
-  std::filesystem::remove_all(dir);
 }
 
 TEST(MissionRules, StockMissionsPassBoth) {
