@@ -25,6 +25,25 @@ double us76_temperature_K(double altitude_m) {
   return kBaseT_K[layer] + kLapse_Kpm[layer] * (h - kBase_m[layer]);
 }
 
+// Interval j and weight w of the upper node of the grid g at q, clamped at the edges: the rules
+// and the expression of numerics::bilinear's axes, which OnboardAero::MachSlice must equal bit
+// for bit.
+void clamped_interval(const double* g, int n, double q, int hint, int& j, double& w) {
+  if (n < 2) {
+    j = 0;
+    w = 0.0;
+    return;
+  }
+  j = numerics::bracket_index(g, n, q, hint);
+  if (!(q > g[0])) {
+    w = 0.0;
+  } else if (q >= g[n - 1]) {
+    w = 1.0;
+  } else {
+    w = (q - g[j]) / (g[j + 1] - g[j]);
+  }
+}
+
 bool strictly_increasing(const double* x, int n) {
   for (int i = 1; i < n; ++i) {
     if (!(x[i] > x[i - 1])) return false;
@@ -158,6 +177,46 @@ void OnboardAero::coefficients(double alpha_rad, double mach, double& cl, double
 }
 double OnboardAero::cl(double alpha_rad, double mach) const { return lift_scale_ * interpolate(cl_, alpha_rad, mach); }
 double OnboardAero::cd(double alpha_rad, double mach) const { return interpolate(cd_, alpha_rad, mach); }
+
+OnboardAero::MachSlice OnboardAero::at_mach(double mach) const {
+  MachSlice slice;
+  slice.aero_ = this;
+  clamped_interval(mach_, n_mach_, mach, hint_mach_, slice.j_, slice.w_);
+  slice.j1_ = n_mach_ >= 2 ? slice.j_ + 1 : slice.j_;
+  slice.hint_alpha_ = hint_alpha_;
+  return slice;
+}
+
+double OnboardAero::MachSlice::interpolate(const double* v, double alpha_rad) const {
+  const OnboardAero& a = *aero_;
+  const int ny = a.n_mach_;
+  if (a.n_alpha_ < 1 || ny < 1) return 0.0;
+  int i = hint_alpha_;
+  double wx = 0.0;
+  const double* x = a.alpha_rad_;
+  if (i >= 0 && i + 1 < a.n_alpha_ && alpha_rad < x[i + 1] && (i > 0 ? x[i] <= alpha_rad : x[0] < alpha_rad)) {
+    // Inside the last interval (most steps of a search are): the interval bracket_index finds
+    // there and clamped_interval's weight (at x[0] clamped_interval's literal 0 applies).
+    wx = (alpha_rad - x[i]) / (x[i + 1] - x[i]);
+  } else {
+    clamped_interval(x, a.n_alpha_, alpha_rad, i, i, wx);
+    if (a.n_alpha_ >= 2) hint_alpha_ = i;
+  }
+  const int i1 = a.n_alpha_ >= 2 ? i + 1 : i;
+  const double wy = w_;
+  const double v00 = v[i * ny + j_];
+  const double v01 = v[i * ny + j1_];
+  const double v10 = v[i1 * ny + j_];
+  const double v11 = v[i1 * ny + j1_];
+  return (1.0 - wx) * ((1.0 - wy) * v00 + wy * v01) + wx * ((1.0 - wy) * v10 + wy * v11);  // as numerics::bilinear
+}
+
+double OnboardAero::MachSlice::cl(double alpha_rad) const {
+  return aero_ == nullptr ? 0.0 : aero_->lift_scale_ * interpolate(aero_->cl_, alpha_rad);
+}
+double OnboardAero::MachSlice::cd(double alpha_rad) const {
+  return aero_ == nullptr ? 0.0 : interpolate(aero_->cd_, alpha_rad);
+}
 
 // ---------------------------------------------------------------- alpha profile
 Status AlphaProfile::init(const double* e_norm, const double* alpha_rad, int n) {

@@ -85,6 +85,29 @@ class OnboardAero {
   static constexpr int kMaxAlpha = 64;
   static constexpr int kMaxMach = 64;
 
+  /// The tables along alpha at one Mach number, for searches in alpha at a fixed flight
+  /// condition: the Mach interval and weight are found once (at_mach), each look-up then
+  /// brackets alpha alone. Its values are those of cl() and cd() at that Mach bit for bit: the
+  /// same clamping and the same bilinear expression, evaluated in the same order. Refers to
+  /// the OnboardAero it came from: use it while that object, its tables and its lift scale
+  /// stay as they are (within one cycle or one plan step). Copies are independent searches
+  /// (each keeps its own hint); a default-constructed slice has no table and gives 0.
+  class MachSlice {
+   public:
+    double cl(double alpha_rad) const;
+    double cd(double alpha_rad) const;
+
+   private:
+    friend class OnboardAero;
+    double interpolate(const double* table, double alpha_rad) const;
+    const OnboardAero* aero_ = nullptr;
+    int j_ = 0;              // Mach interval [mach_j, mach_j1]
+    int j1_ = 0;             // j + 1, or j with a single Mach
+    double w_ = 0.0;         // weight of Mach node j1
+    mutable int hint_alpha_ = -1;  // search hint only (numerics::bracket_index)
+  };
+  MachSlice at_mach(double mach) const;
+
   /// Trimmed C_L, C_D on the data's grid (solve_trimmed_coefficients). Start-up only.
   Status init_trimmed(const TrimAeroData& data);
   /// Tables over (alpha, Mach), row-major: values[i_alpha * n_mach + i_mach].

@@ -3,6 +3,50 @@
 #include <cmath>
 
 namespace reentry::fsw {
+namespace {
+
+// A modulation below alpha_ref at one Mach number and depth: what does not depend on the lift
+// ratio (the table along alpha at that Mach, C_L at the reference and at the depth, whether a
+// lower alpha lowers the lift) is looked up once, so that a quadrature over the roll repeats
+// only the bisections. The same look-ups and comparisons as one modulation alone.
+class AlphaModulation {
+ public:
+  AlphaModulation(const OnboardAero& aero, double alpha_rad, double mach, double max_rad)
+      : aero_(aero.at_mach(mach)), alpha_rad_(alpha_rad), lo_rad_(std::fmax(0.0, alpha_rad - max_rad)),
+        cl_ref_(aero_.cl(alpha_rad)) {
+    constexpr double kDegree_rad = M_PI / 180.0;
+    if (cl_ref_ > 0.0) {
+      lift_falls_ = aero_.cl(alpha_rad - kDegree_rad) < cl_ref_;
+      cl_lo_ = aero_.cl(lo_rad_);
+    }
+  }
+  const OnboardAero::MachSlice& aero() const { return aero_; }
+
+  /// alpha with C_L(alpha) = lift_ratio C_L(alpha_ref) (ReversalExecution::modulated_alpha).
+  double alpha_rad(double lift_ratio) const {
+    if (!(lift_ratio < 1.0) || !(cl_ref_ > 0.0)) return alpha_rad_;
+    // Only where lowering alpha lowers the lift (below alpha(C_L max)) and can reach the ratio;
+    // elsewhere a lower alpha would only cost drag.
+    const double cl_target = lift_ratio * cl_ref_;
+    if (!lift_falls_ || !(cl_lo_ < cl_target)) return alpha_rad_;
+    double lo = lo_rad_, hi = alpha_rad_;
+    for (int i = 0; i < kAlphaBisectionSteps; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      if (aero_.cl(mid) > cl_target) hi = mid; else lo = mid;
+    }
+    return 0.5 * (lo + hi);
+  }
+
+ private:
+  OnboardAero::MachSlice aero_;
+  double alpha_rad_;
+  double lo_rad_;            // the deepest alpha, alpha_ref - max (not below 0)
+  double cl_ref_;
+  double cl_lo_ = 0.0;       // C_L at lo_rad_
+  bool lift_falls_ = false;  // C_L falls 1 deg below alpha_ref
+};
+
+}  // namespace
 
 void ReversalExecution::init(const OnboardModels& models, const TrackerParams& params, double sigma_rate_max_radps) {
   bind(models, params);
@@ -35,19 +79,7 @@ double ReversalExecution::lift_ratio(double sigma0_rad, double t_rel_s) const {
 }
 
 double ReversalExecution::modulated_alpha(double alpha_rad, double mach, double lift_ratio, double max_rad) const {
-  const OnboardAero& aero = models_->aero();
-  const double cl_ref = aero.cl(alpha_rad, mach);
-  if (!(lift_ratio < 1.0) || !(cl_ref > 0.0)) return alpha_rad;
-  double lo = std::fmax(0.0, alpha_rad - max_rad), hi = alpha_rad;
-  // Only where lowering alpha lowers the lift (below alpha(C_L max)) and can reach the ratio;
-  // elsewhere a lower alpha would only cost drag.
-  constexpr double kDegree_rad = M_PI / 180.0;
-  if (!(aero.cl(alpha_rad - kDegree_rad, mach) < cl_ref) || !(aero.cl(lo, mach) < lift_ratio * cl_ref)) return alpha_rad;
-  for (int i = 0; i < kAlphaBisectionSteps; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (aero.cl(mid, mach) > lift_ratio * cl_ref) hi = mid; else lo = mid;
-  }
-  return 0.5 * (lo + hi);
+  return AlphaModulation(models_->aero(), alpha_rad, mach, max_rad).alpha_rad(lift_ratio);
 }
 
 double ReversalExecution::range_extension_m(const RelativeState& s, double mach, double alpha_rad,
@@ -56,15 +88,14 @@ double ReversalExecution::range_extension_m(const RelativeState& s, double mach,
   // int D_mod V dt; the energy saved, int (D - D_mod) V dt, is dissipated afterwards at the
   // drag D over a distance dS = V int (1 - C_D(alpha_mod(t)) / C_D(alpha)) dt (S = -int dE / D).
   if (!(sigma0_rad > 0.0)) return 0.0;
-  const OnboardAero& aero = models_->aero();
-  const double cd_ref = aero.cd(alpha_rad, mach);
+  const AlphaModulation modulation(models_->aero(), alpha_rad, mach, params_->final_modulation_max_rad);
+  const double cd_ref = modulation.aero().cd(alpha_rad);
   const double t_rev = 2.0 * sigma0_rad / sigma_rate_max_radps_;
   constexpr int kSamples = 20;  // midpoint quadrature of the modulated reversal
   double extension = 0.0;
   for (int i = 0; i < kSamples; ++i) {
     const double t = (i + 0.5) * t_rev / kSamples;
-    const double cd =
-        aero.cd(modulated_alpha(alpha_rad, mach, lift_ratio(sigma0_rad, t), params_->final_modulation_max_rad), mach);
+    const double cd = modulation.aero().cd(modulation.alpha_rad(lift_ratio(sigma0_rad, t)));
     if (cd_ref > 0.0) extension += (1.0 - cd / cd_ref) * s.velocity_mps * t_rev / kSamples;
   }
   return extension;
