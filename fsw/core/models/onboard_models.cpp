@@ -187,35 +187,14 @@ OnboardAero::MachSlice OnboardAero::at_mach(double mach) const {
   return slice;
 }
 
-double OnboardAero::MachSlice::interpolate(const double* v, double alpha_rad) const {
+double OnboardAero::MachSlice::interpolate_general(const double* v, double alpha_rad) const {
   const OnboardAero& a = *aero_;
-  const int ny = a.n_mach_;
-  if (a.n_alpha_ < 1 || ny < 1) return 0.0;
-  int i = hint_alpha_;
+  if (a.n_alpha_ < 1 || a.n_mach_ < 1) return 0.0;
+  int i = 0;
   double wx = 0.0;
-  const double* x = a.alpha_rad_;
-  if (i >= 0 && i + 1 < a.n_alpha_ && alpha_rad < x[i + 1] && (i > 0 ? x[i] <= alpha_rad : x[0] < alpha_rad)) {
-    // Inside the last interval (most steps of a search are): the interval bracket_index finds
-    // there and clamped_interval's weight (at x[0] clamped_interval's literal 0 applies).
-    wx = (alpha_rad - x[i]) / (x[i + 1] - x[i]);
-  } else {
-    clamped_interval(x, a.n_alpha_, alpha_rad, i, i, wx);
-    if (a.n_alpha_ >= 2) hint_alpha_ = i;
-  }
-  const int i1 = a.n_alpha_ >= 2 ? i + 1 : i;
-  const double wy = w_;
-  const double v00 = v[i * ny + j_];
-  const double v01 = v[i * ny + j1_];
-  const double v10 = v[i1 * ny + j_];
-  const double v11 = v[i1 * ny + j1_];
-  return (1.0 - wx) * ((1.0 - wy) * v00 + wy * v01) + wx * ((1.0 - wy) * v10 + wy * v11);  // as numerics::bilinear
-}
-
-double OnboardAero::MachSlice::cl(double alpha_rad) const {
-  return aero_ == nullptr ? 0.0 : aero_->lift_scale_ * interpolate(aero_->cl_, alpha_rad);
-}
-double OnboardAero::MachSlice::cd(double alpha_rad) const {
-  return aero_ == nullptr ? 0.0 : interpolate(aero_->cd_, alpha_rad);
+  clamped_interval(a.alpha_rad_, a.n_alpha_, alpha_rad, hint_alpha_, i, wx);
+  if (a.n_alpha_ >= 2) hint_alpha_ = i;
+  return combine(v, i, a.n_alpha_ >= 2 ? i + 1 : i, wx);
 }
 
 // ---------------------------------------------------------------- alpha profile

@@ -94,12 +94,35 @@ class OnboardAero {
   /// (each keeps its own hint); a default-constructed slice has no table and gives 0.
   class MachSlice {
    public:
-    double cl(double alpha_rad) const;
-    double cd(double alpha_rad) const;
+    double cl(double alpha_rad) const {
+      return aero_ == nullptr ? 0.0 : aero_->lift_scale_ * interpolate(aero_->cl_, alpha_rad);
+    }
+    double cd(double alpha_rad) const { return aero_ == nullptr ? 0.0 : interpolate(aero_->cd_, alpha_rad); }
 
    private:
     friend class OnboardAero;
-    double interpolate(const double* table, double alpha_rad) const;
+    double interpolate(const double* table, double alpha_rad) const {
+      const OnboardAero& a = *aero_;
+      const double* x = a.alpha_rad_;
+      const int i = hint_alpha_;
+      // Inside the last interval (most steps of a search are): the interval and the weight
+      // numerics::bilinear finds there (at x[0] the general path's literal 0 applies).
+      if (i >= 0 && i + 1 < a.n_alpha_ && alpha_rad < x[i + 1] && (i > 0 ? x[i] <= alpha_rad : x[0] < alpha_rad)) {
+        return combine(table, i, i + 1, (alpha_rad - x[i]) / (x[i + 1] - x[i]));
+      }
+      return interpolate_general(table, alpha_rad);
+    }
+    double interpolate_general(const double* table, double alpha_rad) const;
+    /// numerics::bilinear's expression, Mach weight w_.
+    double combine(const double* v, int i, int i1, double wx) const {
+      const int ny = aero_->n_mach_;
+      const double wy = w_;
+      const double v00 = v[i * ny + j_];
+      const double v01 = v[i * ny + j1_];
+      const double v10 = v[i1 * ny + j_];
+      const double v11 = v[i1 * ny + j1_];
+      return (1.0 - wx) * ((1.0 - wy) * v00 + wy * v01) + wx * ((1.0 - wy) * v10 + wy * v11);
+    }
     const OnboardAero* aero_ = nullptr;
     int j_ = 0;              // Mach interval [mach_j, mach_j1]
     int j1_ = 0;             // j + 1, or j with a single Mach
