@@ -25,6 +25,7 @@ enum class Status : std::int8_t {
   kNotConverged = 7,        // trajectory-length iteration did not meet tolerances
   kCapacityExceeded = 8,
   kRangeTooLong = 9,        // even the maximum-drag profile flies past the aim point (best effort given)
+  kRangeTooShort = 10,      // even the longest-flying profile ends short of the aim point (best effort given)
 };
 
 const char* to_string(Status s);
@@ -86,6 +87,7 @@ struct RelativeState {
   double drag_mps2 = 0.0;             // sensed (IMU) drag acceleration
   double lift_mps2 = 0.0;             // sensed lift acceleration magnitude
   double lift_over_drag_scale = 1.0;  // sensed L/D over the on-board model's, filtered (1: model)
+  double bank_rad = 0.0;              // bank flown (the law's filtered command, signed; planner input)
 };
 
 /// x bounded to [lo, hi] (lo <= hi); a NaN passes through (the callers check finiteness).

@@ -598,9 +598,14 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
   gp.onboard_atmosphere = g.choice("onboard_atmosphere", {"exponential", "table"});
   gp.onboard_trim = g.boolean("onboard_trim", false, true);
   gp.initial_descent_drag_mps2 = g.number("initial_descent_drag_mps2", 0.0, 100.0);
+  // ---- Guidance law selection (issue 36, predictor-corrector law) --------------------------
+  // `law` chooses the guidance law; [guidance.predictor_corrector] holds that law's tunables,
+  // passed through with the planner's and tracker's (validated by the flight software's lists).
+  gp.law = g.choice("law", {"drag_tracking", "predictor_corrector"}, false, "drag_tracking");
+  // ---- end of the guidance law block ---------------------------------------------------------
   // The planner's and tracker's tunables ([guidance] numbers not read above, [guidance.planner],
   // [guidance.tracker]) are validated by the flight software's parameter lists.
-  gp.tuning = g.pass_through_numbers({"planner", "tracker"});
+  gp.tuning = g.pass_through_numbers({"planner", "tracker", "predictor_corrector"});
   g.finish();
 
   Reader s = top.sub("sim");

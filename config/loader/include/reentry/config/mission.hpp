@@ -100,6 +100,10 @@ struct GuidanceParams {
   bool onboard_trim = true;              // trimmed on-board aero tables where moment data exist
   double initial_descent_drag_mps2 = 0.05 * 9.80665;  // hold attitude until sensed drag exceeds this
   std::vector<TuningValue> tuning;       // planner / tracker tunables, in file order of their tables
+  // Guidance law (issue 36): "drag_tracking" (planner + tracker) or "predictor_corrector"
+  // (fsw/core/predictor_corrector); the latter's tunables ([guidance.predictor_corrector]) come
+  // through `tuning` as "predictor_corrector.<key>".
+  std::string law = "drag_tracking";
 };
 
 struct SimParams {

@@ -1,0 +1,146 @@
+// Tunables of the numerical predictor-corrector law (FNPEG class: P. Lu, "Entry Guidance: A
+// Unified Method", JGCD 37(3), 2014). Every field is SI with its unit in the name; the defaults
+// are one set for all vehicles. A mission sets any of them in its [guidance.predictor_corrector]
+// table under the key visit_pc_params names (the key carries the unit of the file, `_deg`), within
+// the documented range; docs/predictor_corrector.md has the rule each belongs to.
+#pragma once
+
+#include <cmath>
+
+#include "params/param_visitor.hpp"
+
+namespace reentry::fsw {
+
+struct PredictorCorrectorParams {
+  static constexpr int kMaxSteps = 8000;  // capacity bound of one prediction [steps]
+
+  // Predictor: fixed-step RK4 in time on the point-mass equations over the rotating Earth.
+  double step_s = 2.0;             // integration step (also the predicted guidance period)
+  int max_steps = 4000;            // one prediction ends (time-out) after this many steps
+  // Corrector: safeguarded secant on sigma_0 (Lu 2014), step halving, bounded predictions.
+  int max_predictions = 12;        // predictions per plan
+  double miss_tol_m = 250.0;       // |along-track miss at TAEM| below this: converged
+  double accept_miss_m = 5000.0;   // a plan out of predictions is still adopted below this miss
+  double first_step_rad = 5.0 * M_PI / 180.0;  // secant's second sigma_0 from the first
+  double bank_max_rad = 85.0 * M_PI / 180.0;   // largest |sigma| of the profile and of a command
+  double bank_min_rad = 0.0;       // least |sigma| commanded after capture
+  // Final bank sigma_f of the linear profile: the quasi-equilibrium glide bank at the TAEM state
+  // of the target altitude (bounded), or a share of sigma_0.
+  double final_bank_max_rad = 80.0 * M_PI / 180.0;
+  double final_bank_share = 0.0;   // sigma_f = share sigma_0 + (1 - share) sigma_glide
+  int taem_altitude_samples = 60;  // scan of the TAEM altitude band for the target altitude
+  // TAEM altitude: while the predicted TAEM altitude misses the target by more than
+  // altitude_tol_fraction of the TAEM altitude tolerance, the terminal line's aim is moved by the
+  // miss (within the band) and sigma_0 solved again, at most altitude_iterations times per plan;
+  // the aim's offset is kept for the next plan.
+  int altitude_iterations = 2;
+  double altitude_tol_fraction = 0.2;
+  // Terminal altitude: over the last terminal_span_fraction of the entry-to-TAEM energy span the
+  // bank blends (weight ramping in over terminal_ramp_fraction of that span) into the altitude-
+  // rate law L cos(sigma) = need + k_t (hdot_line - hdot) onto the straight line in (E, h) from
+  // the present state to the target TAEM altitude, hdot_line = -(h - h_TAEM) D V / (E - E_TAEM),
+  // its flight-path angle within [terminal_gamma_min, terminal_gamma_max].
+  double terminal_span_fraction = 0.15;
+  double terminal_ramp_fraction = 0.3;
+  double terminal_gamma_min_rad = -20.0 * M_PI / 180.0;
+  double terminal_gamma_max_rad = 0.0;
+  double terminal_rate_gain_ps = 0.2;  // k_t of the terminal altitude-rate law [1/s]
+  // Altitude-rate damping: L cos(sigma) = L cos(sigma_base) - k (hdot - hdot_ref),
+  // k = 2 zeta sqrt(g_eff / H) (the glide's altitude mode, g_eff >= a tenth of g0).
+  double damping_ratio = 0.7;
+  // Path constraints: planned fraction of every limit (heat flux, load factor, q, q alpha).
+  double constraint_margin = 0.97;
+  double roll_lag_s = 1.0;         // pull-out guard: bank filter lag before the roll to wings level
+  double pullout_glide_need = 0.5; // pull-out guard: the glide's sink is discounted fully from this need / g0
+  // The quasi-equilibrium-glide bound only while the glide can still be reached: time to go of
+  // at least this many altitude-mode time constants 1 / sqrt(g_eff / H); later, the pull-out
+  // guard alone (the flight ends before the glide would settle).
+  double qeg_bound_time_constants = 2.0;
+  // Lateral logic: bank sign reversed when the heading leaves a corridor about the target
+  // heading of a vector field onto the arrival line, narrowing linearly in energy.
+  double corridor_entry_rad = 12.0 * M_PI / 180.0;  // half-width at the entry energy
+  double corridor_taem_rad = 4.0 * M_PI / 180.0;    // half-width at the TAEM energy
+  double approach_angle_max_rad = 45.0 * M_PI / 180.0;  // vector field chi_inf
+  double cross_track_scale_m = 30000.0;  // vector field y_s
+  double approach_turn_factor = 1.5;     // approach angle <= sqrt(2 k |y| / R_turn)
+  double aim_min_range_m = 1000.0;       // offset angle undefined closer than this
+  // Capture guard: farther than capture_overshoot_m from the line, a bank towards it is flown only
+  // while a turn away started now (roll, then the circular arc of the present turn) would stop
+  // within capture_overshoot_m past it.
+  double capture_overshoot_m = 15000.0;
+  // Final reversal (the tracker's rule, docs/guidance_design.md 5.4): within the last
+  // final_reversal_window reversal durations 2 |sigma| / rate before TAEM no corridor reversal;
+  // the last one starts when the TAEM state it leads to balances heading error and cross-track
+  // offset (tolerances as weights), and one correction reversal may follow once the bank is settled.
+  double final_reversal_window = 2.0;
+  int final_turn_steps = 50;             // midpoint steps of the final-turn prediction
+  double bank_settled_rad = 5.0 * M_PI / 180.0;
+  // Plan schedule (the executive's): period, and no plans in the last fraction of the span.
+  double replan_period_s = 10.0;
+  double replan_floor_span_fraction = 0.03;
+  // Sensed drag ratio K (density) of a plan's state, bounded.
+  double drag_ratio_min = 0.5;
+  double drag_ratio_max = 2.0;
+  double lod_ratio_min = 0.5;      // accepted in-flight L/D estimate
+  double lod_ratio_max = 1.5;
+};
+
+/// Visits every field a mission may set, with its key, unit and documented range.
+template <class Params, class Visitor>
+void visit_pc_params(Params& p, Visitor&& v) {
+  using U = ParamUnit;
+  v("step_s", p.step_s, U::kNone, 0.1, 10.0, "predictor RK4 step [s]");
+  v("max_steps", p.max_steps, U::kNone, 100, PredictorCorrectorParams::kMaxSteps, "predictor steps per prediction");
+  v("max_predictions", p.max_predictions, U::kNone, 3, 60, "corrector: predictions per plan");
+  v("miss_tol_m", p.miss_tol_m, U::kNone, 1.0, 1e5, "corrector: converged below this along-track miss [m]");
+  v("accept_miss_m", p.accept_miss_m, U::kNone, 1.0, 1e6, "corrector: best effort adopted below this miss [m]");
+  v("first_step_deg", p.first_step_rad, U::kDeg, 0.1, 45.0, "corrector: second sigma_0 from the first");
+  v("bank_max_deg", p.bank_max_rad, U::kDeg, 10.0, 150.0, "largest bank magnitude (profile and command)");
+  v("bank_min_deg", p.bank_min_rad, U::kDeg, 0.0, 60.0, "least bank magnitude after capture");
+  v("final_bank_max_deg", p.final_bank_max_rad, U::kDeg, 0.0, 89.0, "largest derived final bank sigma_f");
+  v("final_bank_share", p.final_bank_share, U::kNone, 0.0, 1.0, "sigma_f = share sigma_0 + (1 - share) sigma_glide");
+  v("taem_altitude_samples", p.taem_altitude_samples, U::kNone, 1, 10000, "TAEM altitude-band scan samples");
+  v("altitude_iterations", p.altitude_iterations, U::kNone, 0, 10, "terminal-aim corrections per plan");
+  v("altitude_tol_fraction", p.altitude_tol_fraction, U::kNone, 0.0, 1.0, "terminal aim corrected beyond this share of the altitude tolerance");
+  v("terminal_span_fraction", p.terminal_span_fraction, U::kNone, 0.0, 1.0, "terminal altitude line: last share of the span");
+  v("terminal_ramp_fraction", p.terminal_ramp_fraction, U::kNone, 0.01, 1.0, "terminal altitude line: ramp-in share of its span");
+  v("terminal_gamma_min_deg", p.terminal_gamma_min_rad, U::kDeg, -45.0, 0.0, "terminal altitude line: steepest flight path");
+  v("terminal_gamma_max_deg", p.terminal_gamma_max_rad, U::kDeg, -45.0, 10.0, "terminal altitude line: shallowest flight path");
+  v("terminal_rate_gain_ps", p.terminal_rate_gain_ps, U::kNone, 0.0, 10.0, "terminal altitude-rate gain k_t [1/s]");
+  v("damping_ratio", p.damping_ratio, U::kNone, 0.0, 5.0, "altitude-rate damping ratio zeta");
+  v("constraint_margin", p.constraint_margin, U::kNone, 0.5, 1.0, "planned fraction of every path limit");
+  v("roll_lag_s", p.roll_lag_s, U::kNone, 0.0, 10.0, "pull-out guard: lag before the roll to wings level [s]");
+  v("pullout_glide_need", p.pullout_glide_need, U::kNone, 0.01, 1.0, "pull-out guard: glide sink discounted fully from this need / g0");
+  v("qeg_bound_time_constants", p.qeg_bound_time_constants, U::kNone, 0.0, 100.0,
+    "glide bound while the time to go exceeds this many altitude-mode time constants");
+  v("corridor_entry_deg", p.corridor_entry_rad, U::kDeg, 0.5, 60.0, "heading corridor half-width at entry");
+  v("corridor_taem_deg", p.corridor_taem_rad, U::kDeg, 0.5, 60.0, "heading corridor half-width at TAEM");
+  v("approach_angle_max_deg", p.approach_angle_max_rad, U::kDeg, 1.0, 90.0, "arrival-line field chi_inf");
+  v("cross_track_scale_m", p.cross_track_scale_m, U::kNone, 100.0, 1e6, "arrival-line field y_s [m]");
+  v("approach_turn_factor", p.approach_turn_factor, U::kNone, 0.1, 10.0, "approach-angle turn bound k");
+  v("aim_min_range_m", p.aim_min_range_m, U::kNone, 0.0, 1e5, "offset angle undefined closer than this [m]");
+  v("capture_overshoot_m", p.capture_overshoot_m, U::kNone, 0.0, 1e6, "capture guard: largest overshoot past the line [m]");
+  v("final_reversal_window", p.final_reversal_window, U::kNone, 0.0, 10.0, "final-reversal window / reversal time");
+  v("final_turn_steps", p.final_turn_steps, U::kNone, 5, 500, "final-turn prediction steps");
+  v("bank_settled_deg", p.bank_settled_rad, U::kDeg, 0.1, 30.0, "bank settled on its command within this");
+  v("replan_period_s", p.replan_period_s, U::kNone, 0.5, 1000.0, "plan period [s]");
+  v("replan_floor_span_fraction", p.replan_floor_span_fraction, U::kNone, 0.0, 1.0, "no plans in this last share of the span");
+  v("drag_ratio_min", p.drag_ratio_min, U::kNone, 0.1, 1.0, "least sensed drag ratio K");
+  v("drag_ratio_max", p.drag_ratio_max, U::kNone, 1.0, 10.0, "largest sensed drag ratio K");
+  v("lod_ratio_min", p.lod_ratio_min, U::kNone, 0.1, 1.0, "least accepted L/D estimate");
+  v("lod_ratio_max", p.lod_ratio_max, U::kNone, 1.0, 10.0, "largest accepted L/D estimate");
+}
+
+/// The key of the first field that breaks a relation between fields (nullptr: consistent).
+inline const char* pc_params_inconsistency(const PredictorCorrectorParams& p) {
+  if (!(p.bank_min_rad < p.bank_max_rad)) return "bank_min_deg";
+  if (!(p.final_bank_max_rad <= p.bank_max_rad)) return "final_bank_max_deg";
+  if (!(p.corridor_taem_rad <= p.corridor_entry_rad)) return "corridor_taem_deg";
+  if (!(p.drag_ratio_min < p.drag_ratio_max)) return "drag_ratio_min";
+  if (!(p.lod_ratio_min < p.lod_ratio_max)) return "lod_ratio_min";
+  if (!(p.miss_tol_m <= p.accept_miss_m)) return "miss_tol_m";
+  if (!(p.terminal_gamma_min_rad <= p.terminal_gamma_max_rad)) return "terminal_gamma_min_deg";
+  return nullptr;
+}
+
+}  // namespace reentry::fsw
