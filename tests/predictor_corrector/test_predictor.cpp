@@ -143,7 +143,8 @@ TEST(PcPredictor, EquilibriumGlideCoversTheAnalyticRange) {
   start.lateral.sign = 1;
   start.captured = true;
   BankProfile bank;
-  bank.sigma0_rad = bank.sigma_glide_rad = sigma;
+  bank.bank_max_rad = 85.0 * kDeg;
+  bank.control = bank.sigma_glide_rad = sigma;
   bank.e0_Jpkg = e0;
   bank.ef_Jpkg = ef;
   const Prediction p = c->predictor.run(start, bank, nullptr);
@@ -207,7 +208,7 @@ TEST(PcCorrector, ReachesAReachableTargetAtARootOfTheMiss) {
 
 TEST(PcCorrector, OutOfReachReturnsTheBoundThatMissesLeastAndSaysWhichWay) {
   const config::Mission x33 = load("x33");
-  for (const double shift : {+3000e3 / kEarthRadius_m, -5000e3 / kEarthRadius_m}) {
+  for (const double shift : {+6000e3 / kEarthRadius_m, -5000e3 / kEarthRadius_m}) {
     CorrectorCase c;
     ASSERT_EQ(c.init(shifted(x33, shift)), Status::kOk);
     const RelativeState s = c.planner->entry_state();
@@ -217,12 +218,17 @@ TEST(PcCorrector, OutOfReachReturnsTheBoundThatMissesLeastAndSaysWhichWay) {
     EXPECT_EQ(st, too_short ? Status::kRangeTooShort : Status::kRangeTooLong) << to_string(st);
     EXPECT_EQ(c.out->n_points, kProfileCapacity);  // flown as a best effort
     EXPECT_DOUBLE_EQ(d.sigma0_rad, too_short ? 0.0 : c.planner->params().bank_max_rad);
-    // Brute force over sigma_0: nothing reaches, nothing misses less.
-    for (double sigma0 = 0.0; sigma0 <= c.planner->params().bank_max_rad + 1e-9; sigma0 += 5.0 * kDeg) {
-      const Prediction p = c.planner->predict(s, sigma0, d.density_ratio, nullptr);
+    EXPECT_DOUBLE_EQ(d.alpha_shift_rad, (too_short ? -1.0 : 1.0) * c.planner->params().alpha_band_rad);
+    // Brute force over the whole family (bank and alpha shift): nothing reaches, nothing misses less.
+    BankProfile bank = c.planner->bank_family();
+    bank.sigma_glide_rad = c.planner->final_bank_rad(d.density_ratio);
+    const int n = 40;
+    for (int i = 0; i <= n; ++i) {
+      bank.control = bank.control_max() * i / n;
+      const Prediction p = c.planner->predict_profile(s, bank, d.density_ratio, nullptr);
       if (!p.usable()) continue;
-      EXPECT_EQ(p.along_m > 0.0, too_short) << sigma0 / kDeg;
-      EXPECT_GE(std::fabs(p.along_m), std::fabs(d.miss_along_m) - 1.0) << sigma0 / kDeg;
+      EXPECT_EQ(p.along_m > 0.0, too_short) << bank.control;
+      EXPECT_GE(std::fabs(p.along_m), std::fabs(d.miss_along_m) - 1.0) << bank.control;
     }
   }
 }

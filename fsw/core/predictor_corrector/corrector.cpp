@@ -11,7 +11,7 @@ constexpr double kMaxStep_rad = 30.0 * M_PI / 180.0;
 }  // namespace
 
 Corrector::Point Corrector::evaluate(double x) {
-  bank_.sigma0_rad = x;
+  bank_.control = x;
   const Prediction pr = predictor_->run(*start_, bank_, scratch_);
   ++result_.predictions;
   Point pt;
@@ -21,7 +21,9 @@ Corrector::Point Corrector::evaluate(double x) {
     pt.valid = true;
     if (!have_best_ || std::fabs(pr.along_m) < std::fabs(result_.best.along_m)) {
       result_.best = pr;
-      result_.sigma0_rad = x;
+      result_.control = x;
+      result_.sigma0_rad = bank_.sigma0_rad();
+      result_.alpha_shift_rad = bank_.alpha_shift_rad();
       have_best_ = true;
       if (best_profile_ != nullptr && scratch_ != nullptr) *best_profile_ = *scratch_;
     }
@@ -75,9 +77,9 @@ CorrectorResult Corrector::solve(const Predictor& predictor, const PredictionSta
   result_ = CorrectorResult{};
   have_best_ = have_neg_ = have_pos_ = false;
   illinois_side_ = 0;
-  const double lo = 0.0, hi = params.bank_max_rad;
+  const double lo = 0.0, hi = bank.control_max();
   Point prev;
-  Point cur = evaluate(clamp(bank.sigma0_rad, lo, hi));
+  Point cur = evaluate(clamp(bank.control, lo, hi));
   Status status = Status::kNotConverged;
   while (result_.predictions < max_predictions) {
     if (have_best_ && std::fabs(result_.best.along_m) <= params.miss_tol_m) {
@@ -94,7 +96,7 @@ CorrectorResult Corrector::solve(const Predictor& predictor, const PredictionSta
       status = Status::kRangeTooLong;
       break;
     }
-    double x = cur.valid ? next_guess(prev, cur) : 0.5 * (cur.x + result_.sigma0_rad);
+    double x = cur.valid ? next_guess(prev, cur) : 0.5 * (cur.x + result_.control);
     x = clamp(x, lo, hi);
     Point next = evaluate(x);
     // Step halving (Lu 2014): a step that made |z| worse without crossing the root is halved

@@ -1,11 +1,11 @@
 // The corrector of the predictor-corrector law (Lu 2014): solves for the one free parameter
-// sigma_0 of the bank profile so that the predicted along-track distance still to go at the
+// (sigma_0, BankProfile's control u) of the bank profile so that the predicted along-track distance still to go at the
 // TAEM energy, z(sigma_0), is zero. z rises with sigma_0 (more bank, more drag, a shorter
 // flight). Safeguarded secant: the secant step is bounded (first_step .. 30 deg), a step that
 // does not reduce |z| is halved back towards the best point, and once z has changed sign the
 // root is kept bracketed (Illinois regula falsi); at most max_predictions predictions.
-// When the target is out of reach the minimum-miss answer is the bound of sigma_0 that flies
-// closest (0: longest flight, bank_max: shortest) and the status says which way it misses.
+// When the target is out of reach the minimum-miss answer is the bound of the control that flies
+// closest (0: longest flight, its maximum: shortest) and the status says which way it misses.
 // A prediction that skips out or times out counts as far too long; one that is not finite is
 // stepped back from. No heap, no exceptions.
 #pragma once
@@ -19,8 +19,10 @@ struct CorrectorResult {
   /// kOk: |z| <= miss_tol; kRangeTooShort / kRangeTooLong: out of reach, the bound that
   /// misses least; kNotConverged: predictions used up (best kept); kNonFinite: nothing usable.
   Status status = Status::kNonFinite;
-  double sigma0_rad = 0.0;
-  Prediction best;        // prediction of sigma0_rad
+  double control = 0.0;     // the free parameter u of the best prediction (BankProfile)
+  double sigma0_rad = 0.0;  // its sigma_0 ...
+  double alpha_shift_rad = 0.0;  // ... and alpha shift
+  Prediction best;
   int predictions = 0;
   bool converged = false;
 };
@@ -35,7 +37,7 @@ class Corrector {
 
  private:
   struct Point {
-    double x = 0.0;  // sigma_0
+    double x = 0.0;  // control u
     double z = 0.0;  // along-track to go at TAEM (far too long: -1e7)
     bool valid = false;
   };

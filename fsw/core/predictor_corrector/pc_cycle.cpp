@@ -73,6 +73,7 @@ PredictorCorrectorCycle::PlanPoint PredictorCorrectorCycle::plan_at(double energ
   auto lerp = [&](const double* a) { return a[k] + w * (a[k + 1] - a[k]); };
   PlanPoint pt;
   pt.sigma_rad = lerp(p.sigma_rad);
+  pt.alpha_rad = lerp(p.alpha_rad);
   pt.hdot_mps = lerp(p.velocity_mps) * std::sin(lerp(p.gamma_rad));
   pt.drag_mps2 = lerp(p.drag_mps2);
   return pt;
@@ -101,6 +102,7 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   in.drag_mps2 = s.drag_mps2;
   in.lift_mps2 = s.lift_mps2;
   in.drag_limit_mps2 = constraint_drag_limit_mps2(models_, limits_, s.velocity_mps, alpha_rad, cl, cd);
+  in.drag_limit_rate_ps = constraint_drag_limit_rate_ps(models_, limits_, s.velocity_mps, s.drag_mps2, alpha_rad, cl, cd);
   in.scale_height_m = local_scale_height_m(models_, h);
   in.sigma_rate_radps = sigma_rate_max_radps_;
   PcLateralInput li;
@@ -111,7 +113,6 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   li.drag_mps2 = s.drag_mps2;
   li.lift_mps2 = s.lift_mps2;
   li.sigma_flown_rad = in.sigma_flown_rad;
-  in.time_to_go_s = lateral_.time_to_go_s(li);
   const BankLawOutput law = bank_magnitude(in, params_);
   const ArrivalGeometry g =
       lateral_.geometry(s.latitude_rad, s.longitude_rad, s.velocity_mps, s.flight_path_rad, s.lift_mps2, law.sigma_rad);
@@ -158,8 +159,11 @@ Status PredictorCorrectorCycle::step(const RelativeState& s, double dt_s, PcCycl
     out.phase = Phase::kInitialDescent;
     out.telemetry.phase = TrackerPhase::kInitialDescent;
   } else {
+    // The plan's alpha (its ranging shift), never outside the band about the profile.
+    out.alpha_rad = clamp(plan_at(s.energy_Jpkg).alpha_rad, std::fmax(alpha - params_.alpha_band_rad, 0.0),
+                          std::fmin(alpha + params_.alpha_band_rad, alpha_max_rad_));
     estimator_.update_drag_ratio(s, alpha_flown, dt_s);
-    bank_command(s, alpha, out);
+    bank_command(s, out.alpha_rad, out);
   }
   out.telemetry.drag_ratio = estimator_.drag_ratio();
   out.telemetry.lift_over_drag_ratio = estimator_.lift_over_drag_ratio();

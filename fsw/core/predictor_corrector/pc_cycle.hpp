@@ -5,7 +5,7 @@
 //      altitude-rate damping toward the plan's predicted altitude rate, the constraint bound and
 //      the pull-out guard re-applied on the navigated state (pc_guidance.hpp);
 //   3. bank sign: the lateral logic of the prediction (corridor about the arrival-line field);
-//   4. alpha: the mission's profile.
+//   4. alpha: the plan's (the mission's profile, shifted within the band by the corrector).
 // The rate filters follow (the guidance stack). Sensed drag and L/D ratios against the on-board
 // models are estimated with the tracker's estimator (K for telemetry, the L/D ratio for the
 // planner). No heap, no exceptions, bounded work.
@@ -57,7 +57,7 @@ class PredictorCorrectorCycle {
 
  private:
   struct PlanPoint {
-    double sigma_rad = 0.0, hdot_mps = 0.0, drag_mps2 = 0.0;
+    double sigma_rad = 0.0, alpha_rad = 0.0, hdot_mps = 0.0, drag_mps2 = 0.0;
   };
   PlanPoint plan_at(double energy_Jpkg) const;
   void bank_command(const RelativeState& s, double alpha_rad, PcCycleOutput& out);

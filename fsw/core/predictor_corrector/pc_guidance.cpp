@@ -20,16 +20,18 @@ bool limited(double v) { return v > 0.0 && std::isfinite(v); }
 // roll at constant vertical acceleration (conservative).
 bool pullout_exceeds(double drag, double lod, double hdot, double g_eff, double scale_height_m, double sigma0_rad,
                      double t_roll_s, double limit) {
-  if (!(drag > 0.0) || !(lod > 0.0) || !(scale_height_m > 0.0)) return false;
+  if (!(drag > 0.0) || !(lod > 0.0) || !(scale_height_m > 0.0) || !(hdot < 0.0)) return false;
   const double sigma = std::fabs(sigma0_rad);
   if (sigma > 1e-6 && t_roll_s > 0.0) {
     const double h_ddot = lod * drag * std::sin(sigma) / sigma - g_eff;
-    const double dh = hdot * t_roll_s + 0.5 * h_ddot * t_roll_s * t_roll_s;
-    hdot += h_ddot * t_roll_s;
+    // The descent may be arrested during the roll itself: its bottom is then the roll's.
+    const double t = h_ddot > 0.0 ? std::fmin(t_roll_s, -hdot / h_ddot) : t_roll_s;
+    const double dh = hdot * t + 0.5 * h_ddot * t * t;
+    hdot += h_ddot * t;
     drag *= std::exp(std::fmin(-dh / scale_height_m, 5.0));
   }
-  if (!(hdot < 0.0)) return false;  // not descending (after the roll): nothing to arrest
   if (drag >= limit) return true;
+  if (!(hdot < 0.0)) return false;  // the bottom is reached in the roll, below the limit
   const double f = lod * scale_height_m * (limit - drag) - g_eff * scale_height_m * std::log(limit / drag) -
                    0.5 * hdot * hdot;
   return f < 0.0;
@@ -66,6 +68,13 @@ double constraint_drag_limit_mps2(const OnboardModels& models, const PcLimits& l
   return d;
 }
 
+double constraint_drag_limit_rate_ps(const OnboardModels& models, const PcLimits& limits, double v_mps, double drag_mps2,
+                                     double alpha_rad, double cl, double cd) {
+  const double now = constraint_drag_limit_mps2(models, limits, v_mps, alpha_rad, cl, cd);
+  const double later = constraint_drag_limit_mps2(models, limits, std::fmax(v_mps - drag_mps2, 1.0), alpha_rad, cl, cd);
+  return now > 0.0 && now < kUnbounded && later < kUnbounded ? std::log(later / now) : 0.0;
+}
+
 double qeg_altitude_rate_mps(double velocity_mps, double radius_m, double latitude_rad, double heading_rad,
                              double drag_mps2, double scale_height_m, double sigma_rad, double sigma_dot_radps) {
   // L(h, V) cos(sigma) = need(V), L ~ rho(h) V^2: (2/V - need'/need) dV - dh / H
@@ -97,8 +106,7 @@ BankLawOutput bank_magnitude(const BankLawInput& in, const PredictorCorrectorPar
   const double need = level_flight_lift_need_mps2(in.radius_m, v * std::cos(in.flight_path_rad), in.latitude_rad,
                                                   in.heading_rad);
   // Altitude-rate damping (Lu 2014): the glide's altitude mode has the stiffness L / H ~ g_eff / H.
-  const double omega_h = std::sqrt(std::fmax(need, 0.1 * kG0_mps2) / in.scale_height_m);
-  out.damping_gain_ps = 2.0 * p.damping_ratio * omega_h;
+  out.damping_gain_ps = 2.0 * p.damping_ratio * std::sqrt(std::fmax(need, 0.1 * kG0_mps2) / in.scale_height_m);
   double cos_sigma = std::cos(in.sigma_base_rad);
   if (in.lift_mps2 > 1e-6) {
     cos_sigma -= out.damping_gain_ps * (hdot - in.hdot_ref_mps) / in.lift_mps2;
@@ -108,14 +116,23 @@ BankLawOutput bank_magnitude(const BankLawInput& in, const PredictorCorrectorPar
     }
   }
   double sigma = clamp(std::acos(clamp(cos_sigma, -1.0, 1.0)), p.bank_min_rad, p.bank_max_rad);
-  // Quasi-equilibrium-glide bound (Xue & Lu 2010): at |sigma| <= acos(need / (L/D D_lim)) the
-  // glide's drag stays within the limit.
+  // Constraint bound (Lu 2014's predictive bound on the descent, in drag form): the drag may
+  // approach its limit no faster than d ln(D / D_lim)/dt <= ln(D_lim / D) / tau; with
+  // D ~ rho V^2, rho ~ exp(-h / H) and V' = -D this is a least altitude rate,
+  //   hdot_min = -H (ln(D_lim / D) / tau + 2 D / V + d ln(D_lim)/dt),
+  // held by the altitude-rate law L cos(sigma) = need + k_c (hdot_min - hdot) when the vehicle
+  // sinks faster (an upper bound on |sigma|; above the limit hdot_min > 0: a climb).
   const double lod = in.drag_mps2 > 1e-9 ? in.lift_mps2 / in.drag_mps2 : 0.0;
-  const double lift_at_limit = lod * in.drag_limit_mps2;
-  out.qeg_bound_rad = need > 0.0 && lift_at_limit > 0.0 ? std::acos(clamp(need / lift_at_limit, 0.0, 1.0)) : p.bank_max_rad;
-  if (sigma > out.qeg_bound_rad && in.time_to_go_s * omega_h >= p.qeg_bound_time_constants) {
-    sigma = out.qeg_bound_rad;
-    out.bounded = true;
+  if (in.drag_limit_mps2 < kUnbounded && in.drag_mps2 > 1e-6 && in.lift_mps2 > 1e-6) {
+    out.hdot_min_mps = -in.scale_height_m * (std::log(in.drag_limit_mps2 / in.drag_mps2) / p.constraint_time_s +
+                                             2.0 * in.drag_mps2 / v + in.drag_limit_rate_ps);
+    if (hdot < out.hdot_min_mps) {
+      const double cos_bound = (need + p.constraint_gain_ps * (out.hdot_min_mps - hdot)) / in.lift_mps2;
+      if (cos_bound > std::cos(sigma)) {
+        sigma = std::acos(clamp(cos_bound, -1.0, 1.0));
+        out.bounded = true;
+      }
+    }
   }
   // Predictive pull-out guard on the sink in excess of the glide's (the glide's own descent
   // follows its falling equilibrium height and needs no arresting). Near orbital speed the

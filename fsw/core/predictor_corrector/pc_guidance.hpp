@@ -3,9 +3,9 @@
 //   - the path-constraint drag limit: the largest drag at which heat flux, load factor, q and
 //     q alpha stay within the planned fraction of their limits at the present speed and alpha;
 //   - the bank magnitude: the base bank with altitude-rate damping (Lu 2014),
-//     L cos(sigma) = L cos(sigma_base) - k (hdot - hdot_ref), bounded above by the
-//     quasi-equilibrium-glide bound of the drag limit (Xue & Lu 2010: the glide at that bank
-//     meets the limit) and by a predictive pull-out guard (a wings-level pull-out started after
+//     L cos(sigma) = L cos(sigma_base) - k (hdot - hdot_ref), bounded above by the constraint
+//     bound (Lu 2014: a least altitude rate from the drag limit over a horizon tau, held by an
+//     altitude-rate law) and by a predictive pull-out guard (a wings-level pull-out started after
 //     the roll from the bank flown would bottom out above the drag limit: full lift);
 //   - the lateral logic: the bank sign is reversed when the heading leaves a corridor about the
 //     target heading of a vector field onto the arrival line (the great circle through the aim
@@ -35,6 +35,9 @@ PcLimits pc_limits_from(const PathLimits& limits, double margin);
 /// 1e300 when nothing is constrained.
 double constraint_drag_limit_mps2(const OnboardModels& models, const PcLimits& limits, double v_mps, double alpha_rad,
                                   double cl, double cd);
+/// d ln(D_lim)/dt at speed v falling at drag D (coefficients held), over one second.
+double constraint_drag_limit_rate_ps(const OnboardModels& models, const PcLimits& limits, double v_mps, double drag_mps2,
+                                     double alpha_rad, double cl, double cd);
 
 /// The terminal phase: over the last terminal_span_fraction of the energy span the bank is blended
 /// (weight ramping in) into an altitude-rate law onto the straight line in (E, h) from the
@@ -65,15 +68,15 @@ struct BankLawInput {
   double drag_mps2 = 0.0;
   double lift_mps2 = 0.0;
   double drag_limit_mps2 = 1e300;
+  double drag_limit_rate_ps = 0.0;  // d ln(D_lim)/dt along V' = -D (the heat limit rises as V falls)
   double scale_height_m = 7050.0;  // local density scale height -1 / (d ln rho / dh)
   double sigma_rate_radps = 0.0;   // the mission's bank rate limit
-  double time_to_go_s = 1e300;     // to the TAEM energy
   TerminalCommand terminal;        // terminal altitude law (weight 0: none)
 };
 struct BankLawOutput {
   double sigma_rad = 0.0;        // magnitude commanded
   double damping_gain_ps = 0.0;  // k
-  double qeg_bound_rad = 0.0;    // quasi-equilibrium-glide bound of the drag limit
+  double hdot_min_mps = -1e300;  // the constraint bound's least altitude rate
   bool bounded = false;          // the constraint bound lowered the bank
   bool pullout_guard = false;    // full lift: the pull-out guard holds
 };

@@ -24,10 +24,18 @@ struct PredictorCorrectorParams {
   double first_step_rad = 5.0 * M_PI / 180.0;  // secant's second sigma_0 from the first
   double bank_max_rad = 85.0 * M_PI / 180.0;   // largest |sigma| of the profile and of a command
   double bank_min_rad = 0.0;       // least |sigma| commanded after capture
+  // Alpha band: alpha stays within alpha_band of the mission's profile (the oracle judges with the
+  // same band, tools/mc --oracle-alpha-band). The corrector's one free parameter also moves alpha
+  // inside it (BankProfile): a range-short flight keeps lateral_bank and flies the band's L/D
+  // first; a range-long one at bank_max raises alpha. alpha_control_scale: radians of the
+  // control per radian of alpha.
+  double alpha_band_rad = 3.0 * M_PI / 180.0;
+  double lateral_bank_rad = 45.0 * M_PI / 180.0;
+  double alpha_control_scale = 3.0;
   // Final bank sigma_f of the linear profile: the quasi-equilibrium glide bank at the TAEM state
   // of the target altitude (bounded), or a share of sigma_0.
   double final_bank_max_rad = 80.0 * M_PI / 180.0;
-  double final_bank_share = 0.0;   // sigma_f = share sigma_0 + (1 - share) sigma_glide
+  double final_bank_share = 1.0;   // sigma_f = share sigma_0 + (1 - share) sigma_glide
   int taem_altitude_samples = 60;  // scan of the TAEM altitude band for the target altitude
   // TAEM altitude: while the predicted TAEM altitude misses the target by more than
   // altitude_tol_fraction of the TAEM altitude tolerance, the terminal line's aim is moved by the
@@ -52,10 +60,10 @@ struct PredictorCorrectorParams {
   double constraint_margin = 0.97;
   double roll_lag_s = 1.0;         // pull-out guard: bank filter lag before the roll to wings level
   double pullout_glide_need = 0.5; // pull-out guard: the glide's sink is discounted fully from this need / g0
-  // The quasi-equilibrium-glide bound only while the glide can still be reached: time to go of
-  // at least this many altitude-mode time constants 1 / sqrt(g_eff / H); later, the pull-out
-  // guard alone (the flight ends before the glide would settle).
-  double qeg_bound_time_constants = 2.0;
+  // Constraint bound: the drag approaches its limit no faster than ln(D_lim / D) / tau
+  // (pc_guidance.cpp), held by an altitude-rate law of gain k_c.
+  double constraint_time_s = 30.0;
+  double constraint_gain_ps = 0.1;
   // Lateral logic: bank sign reversed when the heading leaves a corridor about the target
   // heading of a vector field onto the arrival line, narrowing linearly in energy.
   double corridor_entry_rad = 12.0 * M_PI / 180.0;  // half-width at the entry energy
@@ -97,6 +105,9 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("first_step_deg", p.first_step_rad, U::kDeg, 0.1, 45.0, "corrector: second sigma_0 from the first");
   v("bank_max_deg", p.bank_max_rad, U::kDeg, 10.0, 150.0, "largest bank magnitude (profile and command)");
   v("bank_min_deg", p.bank_min_rad, U::kDeg, 0.0, 60.0, "least bank magnitude after capture");
+  v("alpha_band_deg", p.alpha_band_rad, U::kDeg, 0.0, 20.0, "alpha within this of the mission's profile");
+  v("lateral_bank_deg", p.lateral_bank_rad, U::kDeg, 0.0, 90.0, "bank kept while alpha gives range");
+  v("alpha_control_scale", p.alpha_control_scale, U::kNone, 0.1, 100.0, "corrector control per alpha shift");
   v("final_bank_max_deg", p.final_bank_max_rad, U::kDeg, 0.0, 89.0, "largest derived final bank sigma_f");
   v("final_bank_share", p.final_bank_share, U::kNone, 0.0, 1.0, "sigma_f = share sigma_0 + (1 - share) sigma_glide");
   v("taem_altitude_samples", p.taem_altitude_samples, U::kNone, 1, 10000, "TAEM altitude-band scan samples");
@@ -111,8 +122,8 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("constraint_margin", p.constraint_margin, U::kNone, 0.5, 1.0, "planned fraction of every path limit");
   v("roll_lag_s", p.roll_lag_s, U::kNone, 0.0, 10.0, "pull-out guard: lag before the roll to wings level [s]");
   v("pullout_glide_need", p.pullout_glide_need, U::kNone, 0.01, 1.0, "pull-out guard: glide sink discounted fully from this need / g0");
-  v("qeg_bound_time_constants", p.qeg_bound_time_constants, U::kNone, 0.0, 100.0,
-    "glide bound while the time to go exceeds this many altitude-mode time constants");
+  v("constraint_time_s", p.constraint_time_s, U::kNone, 1.0, 1000.0, "constraint bound: horizon tau of the drag's approach [s]");
+  v("constraint_gain_ps", p.constraint_gain_ps, U::kNone, 0.001, 10.0, "constraint bound: altitude-rate gain k_c [1/s]");
   v("corridor_entry_deg", p.corridor_entry_rad, U::kDeg, 0.5, 60.0, "heading corridor half-width at entry");
   v("corridor_taem_deg", p.corridor_taem_rad, U::kDeg, 0.5, 60.0, "heading corridor half-width at TAEM");
   v("approach_angle_max_deg", p.approach_angle_max_rad, U::kDeg, 1.0, 90.0, "arrival-line field chi_inf");
@@ -134,6 +145,7 @@ void visit_pc_params(Params& p, Visitor&& v) {
 /// The key of the first field that breaks a relation between fields (nullptr: consistent).
 inline const char* pc_params_inconsistency(const PredictorCorrectorParams& p) {
   if (!(p.bank_min_rad < p.bank_max_rad)) return "bank_min_deg";
+  if (!(p.lateral_bank_rad <= p.bank_max_rad)) return "lateral_bank_deg";
   if (!(p.final_bank_max_rad <= p.bank_max_rad)) return "final_bank_max_deg";
   if (!(p.corridor_taem_rad <= p.corridor_entry_rad)) return "corridor_taem_deg";
   if (!(p.drag_ratio_min < p.drag_ratio_max)) return "drag_ratio_min";

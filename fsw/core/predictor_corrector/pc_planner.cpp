@@ -96,6 +96,16 @@ double PredictorCorrectorPlanner::final_bank_rad(double density_ratio) const {
   return std::acos(clamp(c, std::cos(params_.final_bank_max_rad), 1.0));
 }
 
+BankProfile PredictorCorrectorPlanner::bank_family() const {
+  BankProfile b;
+  b.lateral_bank_rad = params_.lateral_bank_rad;
+  b.bank_max_rad = params_.bank_max_rad;
+  b.alpha_band_rad = params_.alpha_band_rad;
+  b.alpha_span = params_.alpha_control_scale * params_.alpha_band_rad;
+  b.final_share = params_.final_bank_share;
+  return b;
+}
+
 RelativeState PredictorCorrectorPlanner::entry_state() const {
   const EntryInterface& e = mission_.entry;
   RelativeState s;
@@ -120,7 +130,10 @@ PredictionStart PredictorCorrectorPlanner::start_from(const RelativeState& from,
   PointMassState x = point_mass_from(from);
   for (int i = 0; i < timing_.latency_ticks; ++i) x.velocity_mps += from.drag_mps2 * timing_.tick_s;
   models_.aero().set_lift_scale(clamp(from.lift_over_drag_scale, params_.lod_ratio_min, params_.lod_ratio_max));
+  // K at the alpha flown: the profile's with the last plan's shift (ramped as it flew it).
   model_.set_density_ratio(1.0);
+  model_.set_alpha_shift(have_last_ ? last_bank_.alpha_shift_rad() : 0.0,
+                         taem_energy_ + params_.terminal_span_fraction * (entry_energy_ - taem_energy_), taem_energy_);
   const AeroSample a = model_.aero(x, model_.alpha_at(energy_of(x)));
   density_ratio = 1.0;
   if (from.drag_mps2 >= 0.1 * capture_drag_mps2_ && a.drag_mps2 > 0.0) {
@@ -164,19 +177,18 @@ Status PredictorCorrectorPlanner::plan(const RelativeState& from, ReferenceProfi
   }
   double k = 1.0;
   const PredictionStart start = start_from(from, k);
-  BankProfile bank;
+  BankProfile bank = bank_family();
   bank.e0_Jpkg = energy_of(start.x);
   bank.ef_Jpkg = taem_energy_;
   if (!(bank.e0_Jpkg > taem_energy_)) return out.status = Status::kInvalidInput;
   bank.sigma_glide_rad = final_bank_rad(k);
-  bank.final_share = params_.final_bank_share;
   bank.terminal_altitude_m = taem_altitude_ + (have_last_ ? terminal_offset_m_ : 0.0);
-  bank.sigma0_rad = have_last_ ? clamp(last_bank_.at(bank.e0_Jpkg), 0.0, params_.bank_max_rad) : 0.5 * params_.bank_max_rad;
+  bank.control = have_last_ ? last_bank_.control : bank.control_for_bank(0.5 * params_.bank_max_rad);
   const CorrectorResult r = solve(start, bank, out);
   Status st = r.status;
   // Out of predictions: the best plan is still flown when it misses by little (a replan follows).
   if (st == Status::kNotConverged && std::fabs(r.best.along_m) <= params_.accept_miss_m) st = Status::kOk;
-  bank.sigma0_rad = r.sigma0_rad;
+  bank.control = r.control;
   fill(r, bank, out);
   out.status = st;
   if (st == Status::kOk || st == Status::kRangeTooLong || st == Status::kRangeTooShort) {
@@ -190,6 +202,7 @@ Status PredictorCorrectorPlanner::plan(const RelativeState& from, ReferenceProfi
   diag_.converged = r.converged;
   diag_.predictions = r.predictions;
   diag_.sigma0_rad = r.sigma0_rad;
+  diag_.alpha_shift_rad = r.alpha_shift_rad;
   diag_.sigmaf_rad = bank.sigmaf_rad();
   diag_.density_ratio = k;
   diag_.lift_scale = models_.aero().lift_scale();
@@ -213,7 +226,7 @@ CorrectorResult PredictorCorrectorPlanner::solve(const PredictionStart& start, B
     const double dh = r.best.altitude_m - taem_altitude_;
     if (std::fabs(dh) <= params_.altitude_tol_fraction * band) break;
     bank.terminal_altitude_m = clamp(bank.terminal_altitude_m - dh, taem_altitude_ - band, taem_altitude_ + band);
-    bank.sigma0_rad = r.sigma0_rad;
+    bank.control = r.control;
     r = corrector_.solve(predictor_, start, bank, params_, params_.max_predictions - used, &out, &scratch_);
     used += r.predictions;
   }
@@ -223,6 +236,19 @@ CorrectorResult PredictorCorrectorPlanner::solve(const PredictionStart& start, B
 
 Prediction PredictorCorrectorPlanner::predict(const RelativeState& s, double sigma0_rad, double density_ratio,
                                               ReferenceProfile* record, double sigmaf_rad, PredictionTrace* trace) {
+  BankProfile bank = bank_family();
+  bank.control = bank.control_for_bank(sigma0_rad);
+  if (sigmaf_rad >= 0.0) {
+    bank.sigma_glide_rad = sigmaf_rad;
+    bank.final_share = 0.0;
+  } else {
+    bank.sigma_glide_rad = final_bank_rad(density_ratio);
+  }
+  return predict_profile(s, bank, density_ratio, record, trace);
+}
+
+Prediction PredictorCorrectorPlanner::predict_profile(const RelativeState& s, BankProfile bank, double density_ratio,
+                                                      ReferenceProfile* record, PredictionTrace* trace) {
   models_.aero().set_lift_scale(clamp(s.lift_over_drag_scale, params_.lod_ratio_min, params_.lod_ratio_max));
   model_.set_density_ratio(density_ratio);
   PredictionStart st;
@@ -230,10 +256,6 @@ Prediction PredictorCorrectorPlanner::predict(const RelativeState& s, double sig
   st.sigma_flown_rad = s.bank_rad;
   st.lateral.sign = sign_of(s.bank_rad);
   st.captured = s.drag_mps2 >= capture_drag_mps2_;
-  BankProfile bank;
-  bank.sigma0_rad = sigma0_rad;
-  bank.sigma_glide_rad = sigmaf_rad >= 0.0 ? sigmaf_rad : final_bank_rad(density_ratio);
-  bank.final_share = sigmaf_rad >= 0.0 ? 0.0 : params_.final_bank_share;
   bank.e0_Jpkg = energy_of(st.x);
   bank.ef_Jpkg = taem_energy_;
   bank.terminal_altitude_m = taem_altitude_;

@@ -24,6 +24,7 @@ struct PcPlanDiagnostics {
   int predictions = 0;
   double sigma0_rad = 0.0;
   double sigmaf_rad = 0.0;
+  double alpha_shift_rad = 0.0;  // ranging alpha within the band
   double density_ratio = 1.0;    // K of the plan's state
   double lift_scale = 1.0;       // L/D estimate used
   double miss_along_m = 0.0;     // predicted along-track to go at TAEM (> 0 short)
@@ -65,6 +66,11 @@ class PredictorCorrectorPlanner {
   /// `trace` if given; sigmaf_rad >= 0: that final bank, else the plan's rule.
   Prediction predict(const RelativeState& s, double sigma0_rad, double density_ratio, ReferenceProfile* record,
                      double sigmaf_rad = -1.0, PredictionTrace* trace = nullptr);
+  /// The same for any member of the plan's family (bank_family() with its control set).
+  Prediction predict_profile(const RelativeState& s, BankProfile bank, double density_ratio, ReferenceProfile* record,
+                             PredictionTrace* trace = nullptr);
+  /// The plan's one-parameter family of bank and alpha profiles (BankProfile), control unset.
+  BankProfile bank_family() const;
   /// The final bank of the TAEM glide at density ratio K (with the present L/D estimate).
   double final_bank_rad(double density_ratio) const;
 

@@ -25,10 +25,19 @@ void PointMassModel::init(const OnboardModels* models, const AlphaProfile* alpha
   alpha_max_rad_ = alpha_max_rad;
   earth_rate_radps_ = earth_rate_radps;
   density_ratio_ = 1.0;
+  alpha_shift_rad_ = 0.0;
+}
+
+double PointMassModel::profile_alpha_at(double energy_Jpkg) const {
+  return clamp(alpha_profile_->alpha_rad(energy_Jpkg / entry_energy_Jpkg_), 0.0, alpha_max_rad_);
 }
 
 double PointMassModel::alpha_at(double energy_Jpkg) const {
-  return clamp(alpha_profile_->alpha_rad(energy_Jpkg / entry_energy_Jpkg_), 0.0, alpha_max_rad_);
+  const double a = alpha_profile_->alpha_rad(energy_Jpkg / entry_energy_Jpkg_);
+  if (alpha_shift_rad_ == 0.0) return clamp(a, 0.0, alpha_max_rad_);
+  const double span = shift_e_full_Jpkg_ - shift_e_zero_Jpkg_;
+  const double w = span > 0.0 ? clamp((energy_Jpkg - shift_e_zero_Jpkg_) / span, 0.0, 1.0) : 1.0;
+  return clamp(a + w * alpha_shift_rad_, 0.0, alpha_max_rad_);
 }
 
 AeroSample PointMassModel::aero(const PointMassState& x, double alpha_rad) const {

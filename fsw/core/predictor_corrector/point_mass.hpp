@@ -50,7 +50,15 @@ class PointMassModel {
   /// Sensed density ratio K (density = K rho_model) of the prediction.
   void set_density_ratio(double k) { density_ratio_ = k; }
   double density_ratio() const { return density_ratio_; }
+  /// Alpha of the prediction: the profile's (within [0, alpha_max]) plus the shift, ramped
+  /// linearly from full at e_full to zero at e_zero (and below).
+  void set_alpha_shift(double shift_rad, double e_full_Jpkg, double e_zero_Jpkg) {
+    alpha_shift_rad_ = shift_rad;
+    shift_e_full_Jpkg_ = e_full_Jpkg;
+    shift_e_zero_Jpkg_ = e_zero_Jpkg;
+  }
   double alpha_at(double energy_Jpkg) const;
+  double profile_alpha_at(double energy_Jpkg) const;
   AeroSample aero(const PointMassState& x, double alpha_rad) const;
   /// State derivative at bank sigma (signed, > 0 turns right); aux, if given, gets the air.
   void derivatives(const PointMassState& x, double sigma_rad, PointMassState& dx, AeroSample* aux) const;
@@ -67,6 +75,9 @@ class PointMassModel {
   double alpha_max_rad_ = 0.0;
   double earth_rate_radps_ = kEarthRate_radps;
   double density_ratio_ = 1.0;
+  double alpha_shift_rad_ = 0.0;
+  double shift_e_full_Jpkg_ = 0.0;
+  double shift_e_zero_Jpkg_ = 0.0;
 };
 
 /// E = V^2/2 - mu/r + mu/R_eq (7.8) of a state.

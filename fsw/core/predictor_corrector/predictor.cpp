@@ -66,10 +66,32 @@ class ProfileRecorder {
 
 }  // namespace
 
+double BankProfile::sigma0_rad() const {
+  const double u = clamp(control, 0.0, control_max());
+  if (u <= lateral_bank_rad) return u;
+  if (u <= lateral_bank_rad + alpha_span) return lateral_bank_rad;
+  return std::fmin(u - alpha_span, bank_max_rad);
+}
+
+double BankProfile::alpha_shift_rad() const {
+  if (!(alpha_span > 0.0)) return 0.0;
+  const double u = clamp(control, 0.0, control_max());
+  if (u <= lateral_bank_rad) return -alpha_band_rad;
+  if (u <= lateral_bank_rad + alpha_span) return -alpha_band_rad * (1.0 - (u - lateral_bank_rad) / alpha_span);
+  const double past = u - (bank_max_rad + alpha_span);
+  return past > 0.0 ? alpha_band_rad * past / alpha_span : 0.0;
+}
+
+double BankProfile::control_for_bank(double sigma0_rad) const {
+  const double s = clamp(sigma0_rad, 0.0, bank_max_rad);
+  return s <= lateral_bank_rad ? s : s + alpha_span;
+}
+
 double BankProfile::at(double energy_Jpkg) const {
+  const double s0 = sigma0_rad();
   if (!(e0_Jpkg > ef_Jpkg)) return sigmaf_rad();
   const double x = clamp((e0_Jpkg - energy_Jpkg) / (e0_Jpkg - ef_Jpkg), 0.0, 1.0);
-  return sigma0_rad + (sigmaf_rad() - sigma0_rad) * x;  // Lu 2014: linear in energy
+  return s0 + (sigmaf_rad() - s0) * x;  // Lu 2014: linear in energy
 }
 
 double local_scale_height_m(const OnboardModels& models, double altitude_m) {
@@ -77,7 +99,7 @@ double local_scale_height_m(const OnboardModels& models, double altitude_m) {
   return slope < 0.0 ? clamp(-1.0 / slope, 3000.0, 15000.0) : 15000.0;
 }
 
-Status Predictor::init(const PointMassModel* model, const PcLateral* lateral, const PredictorCorrectorParams* params,
+Status Predictor::init(PointMassModel* model, const PcLateral* lateral, const PredictorCorrectorParams* params,
                        const PredictorConfig& config) {
   model_ = model;
   lateral_ = lateral;
@@ -96,7 +118,7 @@ double Predictor::command(const PointMassState& x, const AeroSample& a, double e
   const OnboardModels& models = model_->models();
   const double H = local_scale_height_m(models, a.altitude_m);
   BankLawInput in;
-  in.sigma_base_rad = clamp(bank.at(energy), 0.0, params_->bank_max_rad);
+  in.sigma_base_rad = clamp(bank.at(energy), 0.0, params_->bank_max_rad);  // alpha: a.alpha_rad (shifted)
   in.sigma_flown_rad = sigma_flown_rad;
   in.velocity_mps = x.velocity_mps;
   in.radius_m = x.radius_m;
@@ -115,6 +137,8 @@ double Predictor::command(const PointMassState& x, const AeroSample& a, double e
   terminal.target_altitude_m = bank.terminal_altitude_m;
   in.terminal = terminal.at(energy, a.altitude_m, x.velocity_mps, a.drag_mps2, *params_);
   in.drag_limit_mps2 = constraint_drag_limit_mps2(models, config_.limits, x.velocity_mps, a.alpha_rad, a.cl, a.cd);
+  in.drag_limit_rate_ps =
+      constraint_drag_limit_rate_ps(models, config_.limits, x.velocity_mps, a.drag_mps2, a.alpha_rad, a.cl, a.cd);
   in.sigma_rate_radps = config_.sigma_rate_max_radps;
   PcLateralInput li;
   li.energy_Jpkg = energy;
@@ -124,7 +148,6 @@ double Predictor::command(const PointMassState& x, const AeroSample& a, double e
   li.drag_mps2 = a.drag_mps2;
   li.lift_mps2 = a.lift_mps2;
   li.sigma_flown_rad = sigma_flown_rad;
-  in.time_to_go_s = lateral_->time_to_go_s(li);
   const BankLawOutput law = bank_magnitude(in, *params_);
   const ArrivalGeometry g =
       lateral_->geometry(x.latitude_rad, x.longitude_rad, x.velocity_mps, x.flight_path_rad, a.lift_mps2, law.sigma_rad);
@@ -176,6 +199,9 @@ Prediction Predictor::run(const PredictionStart& start, const BankProfile& bank,
                           PredictionTrace* trace) const {
   Prediction pr;
   const double ef = bank.ef_Jpkg;
+  model_->set_alpha_shift(bank.alpha_shift_rad(), config_.terminal.taem_energy_Jpkg +
+                                                      params_->terminal_span_fraction * config_.terminal.span_Jpkg,
+                          ef);
   RateFilter filter;  // the cycle's bank filter, at the step
   filter.init(config_.sigma_rate_max_radps, config_.sigma_accel_max_radps2, params_->step_s);
   filter.reset(start.sigma_flown_rad);

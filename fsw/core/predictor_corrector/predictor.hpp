@@ -48,21 +48,39 @@ struct Prediction {
   bool usable() const { return end == PredictionEnd::kTaem || end == PredictionEnd::kGround; }
 };
 
-/// What one prediction flies: |sigma| linear in energy (Lu 2014) from sigma0 at e0 to
-/// sigma_f = share sigma0 + (1 - share) sigma_glide at the TAEM energy ef (share 0: Lu's fixed
-/// sigma_f, the TAEM glide's bank; 1: a constant bank), and the altitude the terminal phase's
-/// line aims at. sigma0 is the corrector's one free parameter.
+/// What one prediction flies, a one-parameter family in the corrector's control u (radians of
+/// bank, monotonic in range: more u, a shorter flight):
+///   - |sigma| linear in energy (Lu 2014) from sigma0 at e0 to sigma_f = share sigma0 + (1 - share)
+///     sigma_glide at the TAEM energy ef (share 0: Lu's fixed sigma_f, the TAEM glide's bank;
+///     1: a constant bank);
+///   - alpha: the mission's profile shifted by alpha_shift within the band (ranging alpha: lower
+///     alpha, more L/D, on the profiles of all our vehicles, which fly above the L/D-max alpha),
+///     the shift ramped out over the terminal phase so the TAEM alpha is the profile's.
+/// u in [0, s_lat]: sigma0 = u at the full shift -band (a range-short flight keeps the bank
+/// s_lat it needs to turn and flies the band's L/D first); [s_lat, s_lat + w]: sigma0 = s_lat,
+/// the shift from -band to 0; then sigma0 = u - w up to bank_max at no shift; last [0, w]
+/// beyond: sigma0 = bank_max, the shift from 0 to +band (a range-long flight). w = band
+/// times alpha_control_scale (0 without a band).
 struct BankProfile {
-  double sigma0_rad = 0.0;
+  double control = 0.0;            // u
+  double lateral_bank_rad = 0.0;   // s_lat
+  double bank_max_rad = 0.0;
+  double alpha_band_rad = 0.0;
+  double alpha_span = 0.0;         // w
   double sigma_glide_rad = 0.0;
   double final_share = 0.0;
   double e0_Jpkg = 0.0;
   double ef_Jpkg = 0.0;
   double terminal_altitude_m = 0.0;
-  double sigmaf_rad() const { return final_share * sigma0_rad + (1.0 - final_share) * sigma_glide_rad; }
+  double control_max() const { return bank_max_rad + 2.0 * alpha_span; }
+  double sigma0_rad() const;
+  double alpha_shift_rad() const;
+  double sigmaf_rad() const { return final_share * sigma0_rad() + (1.0 - final_share) * sigma_glide_rad; }
   double at(double energy_Jpkg) const;
   /// d|sigma|/dE of the profile.
-  double slope_per_Jpkg() const { return e0_Jpkg > ef_Jpkg ? (sigma0_rad - sigmaf_rad()) / (e0_Jpkg - ef_Jpkg) : 0.0; }
+  double slope_per_Jpkg() const { return e0_Jpkg > ef_Jpkg ? (sigma0_rad() - sigmaf_rad()) / (e0_Jpkg - ef_Jpkg) : 0.0; }
+  /// The control that flies bank sigma0 without alpha shift (clamped to the family).
+  double control_for_bank(double sigma0_rad) const;
 };
 
 /// The attitude flown at every step boundary of a prediction (the bank is linear between
@@ -86,8 +104,9 @@ struct PredictorConfig {
 
 class Predictor {
  public:
-  /// The model, lateral logic and parameters are referenced (they outlive the predictor).
-  Status init(const PointMassModel* model, const PcLateral* lateral, const PredictorCorrectorParams* params,
+  /// The model, lateral logic and parameters are referenced (they outlive the predictor); the
+  /// model's alpha shift is set by each prediction.
+  Status init(PointMassModel* model, const PcLateral* lateral, const PredictorCorrectorParams* params,
               const PredictorConfig& config);
   /// Flies the prediction from `start` with `bank`; samples the profile into `record` and the
   /// attitude at the step boundaries into `trace` if given.
@@ -104,7 +123,7 @@ class Predictor {
             double& en, double& h) const;
   void finish(const PointMassState& x, double e, double t, double range_rad, Prediction& pr) const;
 
-  const PointMassModel* model_ = nullptr;
+  PointMassModel* model_ = nullptr;  // its alpha shift is set per prediction
   const PcLateral* lateral_ = nullptr;
   const PredictorCorrectorParams* params_ = nullptr;
   PredictorConfig config_;
