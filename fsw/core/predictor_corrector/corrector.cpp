@@ -86,6 +86,9 @@ CorrectorResult Corrector::solve(const Predictor& predictor, const PredictionSta
       status = Status::kOk;
       break;
     }
+    // A bracket narrower than the control tolerance holds a jump of z (a reversal more or
+    // less), not a root the predictions can refine: the best side is the answer.
+    if (have_neg_ && have_pos_ && std::fabs(pos_.x - neg_.x) < params.control_tol_rad) break;
     // Out of reach: the bound that flies farthest (0) is still short, or the shortest
     // (bank_max) still long; z is monotonic in sigma_0 there.
     if (cur.valid && cur.x <= lo && cur.z > 0.0) {

@@ -74,12 +74,14 @@ PredictorCorrectorCycle::PlanPoint PredictorCorrectorCycle::plan_at(double energ
   PlanPoint pt;
   pt.sigma_rad = lerp(p.sigma_rad);
   pt.alpha_rad = lerp(p.alpha_rad);
+  pt.radius_m = lerp(p.radius_m);
   pt.hdot_mps = lerp(p.velocity_mps) * std::sin(lerp(p.gamma_rad));
   pt.drag_mps2 = lerp(p.drag_mps2);
   return pt;
 }
 
-void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_rad, PcCycleOutput& out) {
+void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_rad, double alpha_profile_rad,
+                                           PcCycleOutput& out) {
   const PlanPoint plan = plan_at(s.energy_Jpkg);
   const double h = s.radius_m - surface_radius_m(s.latitude_rad);
   const double mach = models_.mach(h, s.velocity_mps);
@@ -88,6 +90,7 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   cl *= estimator_.lift_over_drag_ratio();
   BankLawInput in;
   in.sigma_base_rad = std::fabs(plan.sigma_rad);
+  in.scale_height_m = local_scale_height_m(models_, h);
   in.sigma_flown_rad = attitude_given_ ? flown_sigma_rad_ : 0.0;
   in.velocity_mps = s.velocity_mps;
   in.radius_m = s.radius_m;
@@ -96,14 +99,16 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   in.flight_path_rad = s.flight_path_rad;
   // The plan's altitude rate; in the terminal phase the line onto the plan's TAEM altitude from
   // the navigated state, as the prediction flies it.
-  in.hdot_ref_mps = plan.hdot_mps;
+  const double need = level_flight_lift_need_mps2(s.radius_m, s.velocity_mps * std::cos(s.flight_path_rad),
+                                                  s.latitude_rad, s.heading_rad);
+  const double to_plan_m = plan.radius_m - s.radius_m;
+  in.hdot_ref_mps = plan.hdot_mps + position_gain_ps(need, in.scale_height_m, params_) * to_plan_m;
   const TerminalAltitude terminal{taem_energy_Jpkg_, entry_energy_Jpkg_ - taem_energy_Jpkg_, profile_.taem_altitude_m};
   in.terminal = terminal.at(s.energy_Jpkg, h, s.velocity_mps, s.drag_mps2, params_);
   in.drag_mps2 = s.drag_mps2;
   in.lift_mps2 = s.lift_mps2;
   in.drag_limit_mps2 = constraint_drag_limit_mps2(models_, limits_, s.velocity_mps, alpha_rad, cl, cd);
   in.drag_limit_rate_ps = constraint_drag_limit_rate_ps(models_, limits_, s.velocity_mps, s.drag_mps2, alpha_rad, cl, cd);
-  in.scale_height_m = local_scale_height_m(models_, h);
   in.sigma_rate_radps = sigma_rate_max_radps_;
   PcLateralInput li;
   li.energy_Jpkg = s.energy_Jpkg;
@@ -120,6 +125,19 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   lateral_.decide(lateral_state_, li, g);
   const int sign = lateral_state_.sign;
   out.sigma_rad = sign * std::fmax(law.sigma_rad, kMinBankMagnitude_rad);
+  // While a reversal rolls the bank through wings level, alpha sheds the vertical lift in excess
+  // of the command's within the band.
+  const double alpha_min = std::fmax(alpha_profile_rad - params_.alpha_band_rad, 0.0);
+  out.alpha_rad = lateral_state_.reversing
+                      ? modulated_alpha_rad(models_.aero(), alpha_rad, mach, law.sigma_rad, in.sigma_flown_rad,
+                                            sigma_rate_max_radps_, alpha_min, params_)
+                      : alpha_rad;
+  // Load relief at the present q (sensed drag over the model's C_D at the alpha flown).
+  const double alpha_flown = attitude_given_ ? flown_alpha_rad_ : alpha_rad;
+  const double cd_flown = models_.aero().cd(alpha_flown, mach);
+  if (cd_flown > 0.0) {
+    out.alpha_rad = load_relief_alpha_rad(models_.aero(), out.alpha_rad, mach, s.drag_mps2 / cd_flown, limits_, alpha_min);
+  }
   out.phase = sign * in.sigma_flown_rad < 0.0 ? Phase::kReversal : Phase::kTracking;
   out.drag_ref_mps2 = plan.drag_mps2;
   out.drag_err_mps2 = s.drag_mps2 - plan.drag_mps2;
@@ -136,7 +154,7 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   t.mean_bank_rad = in.sigma_base_rad;
   t.cross_track_m = g.cross_m;
   t.along_track_m = g.along_m;
-  t.reversing = out.phase == Phase::kReversal;
+  t.reversing = lateral_state_.reversing;
   t.saturated = law.bounded;
   t.pullout_arrested = law.pullout_guard;
   t.time_to_go_s = lateral_.time_to_go_s(li);
@@ -153,7 +171,13 @@ Status PredictorCorrectorCycle::step(const RelativeState& s, double dt_s, PcCycl
   estimator_.update_lift_over_drag_ratio(s, alpha_flown, dt_s);
   out.alpha_rad = alpha;
   out.lift_over_drag_scale = estimator_.lift_over_drag_ratio();
-  if (!captured_ && has_profile_ && s.drag_mps2 >= capture_drag_mps2_) captured_ = true;
+  if (!captured_ && has_profile_) {
+    const double h = s.radius_m - surface_radius_m(s.latitude_rad);
+    const double need = level_flight_lift_need_mps2(s.radius_m, s.velocity_mps * std::cos(s.flight_path_rad),
+                                                    s.latitude_rad, s.heading_rad);
+    captured_ = capture_due(s.drag_mps2, s.lift_mps2, s.velocity_mps * std::sin(s.flight_path_rad), need,
+                            local_scale_height_m(models_, h), capture_drag_mps2_, params_);
+  }
   if (!captured_) {
     out.sigma_rad = 0.0;  // initial descent: wings level
     out.phase = Phase::kInitialDescent;
@@ -163,7 +187,7 @@ Status PredictorCorrectorCycle::step(const RelativeState& s, double dt_s, PcCycl
     out.alpha_rad = clamp(plan_at(s.energy_Jpkg).alpha_rad, std::fmax(alpha - params_.alpha_band_rad, 0.0),
                           std::fmin(alpha + params_.alpha_band_rad, alpha_max_rad_));
     estimator_.update_drag_ratio(s, alpha_flown, dt_s);
-    bank_command(s, out.alpha_rad, out);
+    bank_command(s, out.alpha_rad, alpha, out);
   }
   out.telemetry.drag_ratio = estimator_.drag_ratio();
   out.telemetry.lift_over_drag_ratio = estimator_.lift_over_drag_ratio();

@@ -57,10 +57,10 @@ class PredictorCorrectorCycle {
 
  private:
   struct PlanPoint {
-    double sigma_rad = 0.0, alpha_rad = 0.0, hdot_mps = 0.0, drag_mps2 = 0.0;
+    double sigma_rad = 0.0, alpha_rad = 0.0, hdot_mps = 0.0, drag_mps2 = 0.0, radius_m = 0.0;
   };
   PlanPoint plan_at(double energy_Jpkg) const;
-  void bank_command(const RelativeState& s, double alpha_rad, PcCycleOutput& out);
+  void bank_command(const RelativeState& s, double alpha_rad, double alpha_profile_rad, PcCycleOutput& out);
 
   OnboardModels models_;
   AlphaProfile alpha_profile_;

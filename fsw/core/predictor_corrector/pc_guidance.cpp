@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "planner/mission_geometry.hpp"
+#include "tracker/constraint_limiter.hpp"
 #include "tracker/lateral_logic.hpp"
 
 namespace reentry::fsw {
@@ -100,13 +101,65 @@ TerminalCommand TerminalAltitude::at(double energy_Jpkg, double altitude_m, doub
   return c;
 }
 
+double modulated_alpha_rad(const OnboardAero& aero, double alpha_rad, double mach, double sigma_cmd_mag_rad,
+                           double sigma_flown_rad, double sigma_rate_radps, double alpha_min_rad,
+                           const PredictorCorrectorParams& p) {
+  const double c_flown = std::cos(sigma_flown_rad), c_cmd = std::cos(sigma_cmd_mag_rad);
+  if (!(c_flown > c_cmd) || !(c_flown > 1e-3) || !(alpha_min_rad < alpha_rad)) return alpha_rad;
+  // A fast roll's lift pulse is short: modulation only where the reversal lasts (2 |sigma| / rate).
+  if (!(sigma_rate_radps > 0.0) || 2.0 * sigma_cmd_mag_rad / sigma_rate_radps < p.modulation_min_roll_s) return alpha_rad;
+  const double target = std::fmax(c_cmd / c_flown, p.modulation_min_lift_ratio) * aero.cl(alpha_rad, mach);
+  double lo = alpha_min_rad, hi = alpha_rad;
+  if (aero.cl(lo, mach) >= target) return lo;
+  for (int i = 0; i < 12; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (aero.cl(mid, mach) < target ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+bool capture_due(double drag_mps2, double lift_mps2, double hdot_mps, double need_mps2, double scale_height_m,
+                 double threshold_mps2, const PredictorCorrectorParams& p) {
+  if (drag_mps2 >= threshold_mps2) return true;
+  if (!(drag_mps2 >= p.capture_drag_fraction * threshold_mps2) || !(drag_mps2 > 0.0)) return false;
+  const double bottom =
+      wings_level_pullout_drag_mps2(drag_mps2, lift_mps2 / drag_mps2, hdot_mps, need_mps2, scale_height_m);
+  return bottom < threshold_mps2;
+}
+
+double load_relief_alpha_rad(const OnboardAero& aero, double alpha_rad, double mach, double q_s_over_m,
+                             const PcLimits& limits, double alpha_min_rad) {
+  auto accel = [&](double a) {
+    double cl = 0.0, cd = 0.0;
+    aero.coefficients(a, mach, cl, cd);
+    return q_s_over_m * std::hypot(cl, cd);
+  };
+  const double limit = limits.load_factor_max_mps2;
+  if (!(limit > 0.0) || !(alpha_min_rad < alpha_rad) || accel(alpha_rad) <= limit) return alpha_rad;
+  double lo = alpha_min_rad, hi = alpha_rad;
+  if (accel(lo) > limit) return lo;
+  for (int i = 0; i < 12; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (accel(mid) > limit ? hi : lo) = mid;
+  }
+  return lo;
+}
+
+double damping_gain_ps(double need_mps2, double scale_height_m, const PredictorCorrectorParams& p) {
+  // Altitude-rate damping (Lu 2014): the glide's altitude mode has the stiffness L / H ~ g_eff / H.
+  return 2.0 * p.damping_ratio * std::sqrt(std::fmax(need_mps2, 0.1 * kG0_mps2) / scale_height_m);
+}
+
+double position_gain_ps(double need_mps2, double scale_height_m, const PredictorCorrectorParams& p) {
+  return p.glide_position_factor > 0.0 ? damping_gain_ps(need_mps2, scale_height_m, p) / p.glide_position_factor : 0.0;
+}
+
 BankLawOutput bank_magnitude(const BankLawInput& in, const PredictorCorrectorParams& p) {
   BankLawOutput out;
   const double v = in.velocity_mps, hdot = v * std::sin(in.flight_path_rad);
   const double need = level_flight_lift_need_mps2(in.radius_m, v * std::cos(in.flight_path_rad), in.latitude_rad,
                                                   in.heading_rad);
-  // Altitude-rate damping (Lu 2014): the glide's altitude mode has the stiffness L / H ~ g_eff / H.
-  out.damping_gain_ps = 2.0 * p.damping_ratio * std::sqrt(std::fmax(need, 0.1 * kG0_mps2) / in.scale_height_m);
+  out.damping_gain_ps = damping_gain_ps(need, in.scale_height_m, p);
   double cos_sigma = std::cos(in.sigma_base_rad);
   if (in.lift_mps2 > 1e-6) {
     cos_sigma -= out.damping_gain_ps * (hdot - in.hdot_ref_mps) / in.lift_mps2;
@@ -206,6 +259,8 @@ double PcLateral::time_to_go_s(const PcLateralInput& in) const {
 
 bool PcLateral::final_balance_passed(const PcLateralState& st, const PcLateralInput& in, const ArrivalGeometry& g,
                                      double t_go_s) const {
+  // No reversal when the turn flown now already ends within final_keep_fraction of the TAEM
+  // heading and range tolerances (each reversal rolls through wings level: a climb).
   // Heading and cross-track at TAEM after a roll started now to the other side (the tracker's
   // final-turn prediction): the balance psi_f - (heading_tol / range_tol) y_f has passed zero on
   // the side being turned to when it would not come back even with that roll.
@@ -222,12 +277,29 @@ bool PcLateral::final_balance_passed(const PcLateralState& st, const PcLateralIn
   f.heading_err_rad = wrap_pi(in.heading_rad - g.line_heading_rad);
   f.cross_track_m = g.cross_m;
   f.steps = p.final_turn_steps;
+  FinalTurnInput keep = f;
+  keep.sigma_end_rad = st.sign * in.sigma_mag_rad;
+  const FinalTurnState kept = predict_final_turn(keep);
+  if (std::fabs(kept.heading_err_rad) < p.final_keep_fraction * taem_.heading_tol_rad &&
+      std::fabs(kept.cross_track_m) < p.final_keep_fraction * taem_.range_tol_m) {
+    return false;
+  }
   const FinalTurnState turn = predict_final_turn(f);
   const double w = taem_.range_tol_m > 0.0 && taem_.heading_tol_rad > 0.0 ? taem_.heading_tol_rad / taem_.range_tol_m : 0.0;
   return st.sign * (turn.heading_err_rad - w * turn.cross_track_m) >= 0.0;
 }
 
 void PcLateral::decide(PcLateralState& st, const PcLateralInput& in, const ArrivalGeometry& g) const {
+  const int before = st.sign;
+  decide_sign(st, in, g);
+  if (before != 0 && st.sign != before) st.reversing = true;
+  else if (st.reversing && in.sigma_flown_rad * st.sign > 0.0 &&
+           std::fabs(in.sigma_flown_rad - st.sign * in.sigma_mag_rad) < params_->bank_settled_rad) {
+    st.reversing = false;
+  }
+}
+
+void PcLateral::decide_sign(PcLateralState& st, const PcLateralInput& in, const ArrivalGeometry& g) const {
   const PredictorCorrectorParams& p = *params_;
   const double err = wrap_pi(in.heading_rad - g.target_heading_rad);
   if (st.sign == 0) {

@@ -82,6 +82,33 @@ struct BankLawOutput {
 };
 BankLawOutput bank_magnitude(const BankLawInput& in, const PredictorCorrectorParams& p);
 
+/// Reversal lift modulation (the tracker's rule, docs/guidance_design.md 6.1, within the band):
+/// while the bank flown gives more vertical lift than the command, alpha is lowered so that
+/// C_L(alpha') = r C_L(alpha), r = cos|sigma_cmd| / cos(sigma_flown) bounded below by
+/// modulation_min_lift_ratio, alpha' in [alpha_min, alpha] (bisection, C_L rising with alpha);
+/// only for a roll lasting at least modulation_min_roll_s (2 |sigma| / rate).
+double modulated_alpha_rad(const OnboardAero& aero, double alpha_rad, double mach, double sigma_cmd_mag_rad,
+                           double sigma_flown_rad, double sigma_rate_radps, double alpha_min_rad,
+                           const PredictorCorrectorParams& p);
+
+/// Capture (end of the initial descent, wings level): at the threshold drag, or earlier, from
+/// capture_drag_fraction of it, when a wings-level pull-out from here would level off below the
+/// threshold (a shallow entry that would skip out: the tracker's rule, docs/guidance_design.md 1.2).
+bool capture_due(double drag_mps2, double lift_mps2, double hdot_mps, double need_mps2, double scale_height_m,
+                 double threshold_mps2, const PredictorCorrectorParams& p);
+
+/// Load relief (the tracker's rule, docs/guidance_design.md 3.3): alpha lowered, never below
+/// alpha_min, until the aerodynamic acceleration q S/m hypot(C_L, C_D)(alpha) stays within the
+/// planned load-factor limit (bisection); alpha itself when it already does or nothing is limited.
+double load_relief_alpha_rad(const OnboardAero& aero, double alpha_rad, double mach, double q_s_over_m,
+                             const PcLimits& limits, double alpha_min_rad);
+
+/// The altitude-rate damping gain k = 2 zeta sqrt(g_eff / H) at a lift need (g_eff at least a
+/// tenth of g0), and the gain k / glide_position_factor of the altitude term that pulls the
+/// vehicle onto its reference height (0 without).
+double damping_gain_ps(double need_mps2, double scale_height_m, const PredictorCorrectorParams& p);
+double position_gain_ps(double need_mps2, double scale_height_m, const PredictorCorrectorParams& p);
+
 /// Altitude rate of the quasi-equilibrium glide at the present speed and heading: the glide's
 /// height h from L(h, V) cos(sigma) = need(V) differentiated along V' = -D (Earth-rate term of
 /// (2.45)) and the bank's own rate sigma_dot.
@@ -103,6 +130,7 @@ struct PcLateralState {
   int sign = 0;                  // bank side (0: none chosen yet)
   bool final_done = false;       // the final reversal has started
   bool correction_done = false;  // the one correction reversal after it has started
+  bool reversing = false;        // a reversal's roll is under way (until the bank settles)
 };
 
 /// What the lateral logic needs of the present state.
@@ -137,6 +165,7 @@ class PcLateral {
   const TaemTarget& taem() const { return taem_; }
 
  private:
+  void decide_sign(PcLateralState& st, const PcLateralInput& in, const ArrivalGeometry& g) const;
   double capture_overshoot_m(const PcLateralState& st, const PcLateralInput& in, const ArrivalGeometry& g) const;
   bool final_balance_passed(const PcLateralState& st, const PcLateralInput& in, const ArrivalGeometry& g,
                             double t_go_s) const;

@@ -19,7 +19,9 @@ struct PredictorCorrectorParams {
   int max_steps = 4000;            // one prediction ends (time-out) after this many steps
   // Corrector: safeguarded secant on sigma_0 (Lu 2014), step halving, bounded predictions.
   int max_predictions = 12;        // predictions per plan
-  double miss_tol_m = 250.0;       // |along-track miss at TAEM| below this: converged
+  double miss_tol_m = 500.0;       // |along-track miss at TAEM| below this: converged
+  double control_tol_rad = 0.02 * M_PI / 180.0;  // a bracket narrower than this ends the search
+  int altitude_predictions = 4;    // of max_predictions, kept for the TAEM-altitude iterations
   double accept_miss_m = 5000.0;   // a plan out of predictions is still adopted below this miss
   double first_step_rad = 5.0 * M_PI / 180.0;  // secant's second sigma_0 from the first
   double bank_max_rad = 85.0 * M_PI / 180.0;   // largest |sigma| of the profile and of a command
@@ -32,6 +34,10 @@ struct PredictorCorrectorParams {
   double alpha_band_rad = 3.0 * M_PI / 180.0;
   double lateral_bank_rad = 45.0 * M_PI / 180.0;
   double alpha_control_scale = 3.0;
+  // Reversal lift modulation inside the band (modulated_alpha_rad): lift kept at no less than this
+  // share of the profile's.
+  double modulation_min_lift_ratio = 0.3;
+  double modulation_min_roll_s = 20.0;  // only reversals lasting this long are modulated
   // Final bank sigma_f of the linear profile: the quasi-equilibrium glide bank at the TAEM state
   // of the target altitude (bounded), or a share of sigma_0.
   double final_bank_max_rad = 80.0 * M_PI / 180.0;
@@ -56,8 +62,13 @@ struct PredictorCorrectorParams {
   // Altitude-rate damping: L cos(sigma) = L cos(sigma_base) - k (hdot - hdot_ref),
   // k = 2 zeta sqrt(g_eff / H) (the glide's altitude mode, g_eff >= a tenth of g0).
   double damping_ratio = 0.7;
+  // The reference altitude rate also pulls the vehicle onto its reference height with gain
+  // k / glide_position_factor (prediction: the glide's height h + H ln(L cos(sigma) / need); cycle:
+  // the plan's height at the energy); 0: rate damping only (the glide's lag persists).
+  double glide_position_factor = 2.0;
   // Path constraints: planned fraction of every limit (heat flux, load factor, q, q alpha).
   double constraint_margin = 0.97;
+  double capture_drag_fraction = 0.1;  // a shallow entry is captured from this share of the threshold drag
   double roll_lag_s = 1.0;         // pull-out guard: bank filter lag before the roll to wings level
   double pullout_glide_need = 0.5; // pull-out guard: the glide's sink is discounted fully from this need / g0
   // Constraint bound: the drag approaches its limit no faster than ln(D_lim / D) / tau
@@ -83,6 +94,7 @@ struct PredictorCorrectorParams {
   double final_reversal_window = 2.0;
   int final_turn_steps = 50;             // midpoint steps of the final-turn prediction
   double bank_settled_rad = 5.0 * M_PI / 180.0;
+  double final_keep_fraction = 0.3;  // no final reversal while the present turn ends within this share of the tolerances
   // Plan schedule (the executive's): period, and no plans in the last fraction of the span.
   double replan_period_s = 10.0;
   double replan_floor_span_fraction = 0.03;
@@ -101,6 +113,8 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("max_steps", p.max_steps, U::kNone, 100, PredictorCorrectorParams::kMaxSteps, "predictor steps per prediction");
   v("max_predictions", p.max_predictions, U::kNone, 3, 60, "corrector: predictions per plan");
   v("miss_tol_m", p.miss_tol_m, U::kNone, 1.0, 1e5, "corrector: converged below this along-track miss [m]");
+  v("control_tol_deg", p.control_tol_rad, U::kDeg, 1e-6, 1.0, "corrector: bracket width that ends the search");
+  v("altitude_predictions", p.altitude_predictions, U::kNone, 0, 30, "predictions kept for the TAEM-altitude iterations");
   v("accept_miss_m", p.accept_miss_m, U::kNone, 1.0, 1e6, "corrector: best effort adopted below this miss [m]");
   v("first_step_deg", p.first_step_rad, U::kDeg, 0.1, 45.0, "corrector: second sigma_0 from the first");
   v("bank_max_deg", p.bank_max_rad, U::kDeg, 10.0, 150.0, "largest bank magnitude (profile and command)");
@@ -108,6 +122,8 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("alpha_band_deg", p.alpha_band_rad, U::kDeg, 0.0, 20.0, "alpha within this of the mission's profile");
   v("lateral_bank_deg", p.lateral_bank_rad, U::kDeg, 0.0, 90.0, "bank kept while alpha gives range");
   v("alpha_control_scale", p.alpha_control_scale, U::kNone, 0.1, 100.0, "corrector control per alpha shift");
+  v("modulation_min_lift_ratio", p.modulation_min_lift_ratio, U::kNone, 0.0, 1.0, "reversal modulation: least lift kept");
+  v("modulation_min_roll_s", p.modulation_min_roll_s, U::kNone, 0.0, 1000.0, "reversal modulation: rolls lasting this long [s]");
   v("final_bank_max_deg", p.final_bank_max_rad, U::kDeg, 0.0, 89.0, "largest derived final bank sigma_f");
   v("final_bank_share", p.final_bank_share, U::kNone, 0.0, 1.0, "sigma_f = share sigma_0 + (1 - share) sigma_glide");
   v("taem_altitude_samples", p.taem_altitude_samples, U::kNone, 1, 10000, "TAEM altitude-band scan samples");
@@ -119,7 +135,9 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("terminal_gamma_max_deg", p.terminal_gamma_max_rad, U::kDeg, -45.0, 10.0, "terminal altitude line: shallowest flight path");
   v("terminal_rate_gain_ps", p.terminal_rate_gain_ps, U::kNone, 0.0, 10.0, "terminal altitude-rate gain k_t [1/s]");
   v("damping_ratio", p.damping_ratio, U::kNone, 0.0, 5.0, "altitude-rate damping ratio zeta");
+  v("glide_position_factor", p.glide_position_factor, U::kNone, 0.0, 100.0, "height term gain: k / factor (0: none)");
   v("constraint_margin", p.constraint_margin, U::kNone, 0.5, 1.0, "planned fraction of every path limit");
+  v("capture_drag_fraction", p.capture_drag_fraction, U::kNone, 0.0, 1.0, "shallow-entry capture from this share of the threshold drag");
   v("roll_lag_s", p.roll_lag_s, U::kNone, 0.0, 10.0, "pull-out guard: lag before the roll to wings level [s]");
   v("pullout_glide_need", p.pullout_glide_need, U::kNone, 0.01, 1.0, "pull-out guard: glide sink discounted fully from this need / g0");
   v("constraint_time_s", p.constraint_time_s, U::kNone, 1.0, 1000.0, "constraint bound: horizon tau of the drag's approach [s]");
@@ -134,6 +152,7 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("final_reversal_window", p.final_reversal_window, U::kNone, 0.0, 10.0, "final-reversal window / reversal time");
   v("final_turn_steps", p.final_turn_steps, U::kNone, 5, 500, "final-turn prediction steps");
   v("bank_settled_deg", p.bank_settled_rad, U::kDeg, 0.1, 30.0, "bank settled on its command within this");
+  v("final_keep_fraction", p.final_keep_fraction, U::kNone, 0.0, 1.0, "final reversal only beyond this share of the TAEM tolerances");
   v("replan_period_s", p.replan_period_s, U::kNone, 0.5, 1000.0, "plan period [s]");
   v("replan_floor_span_fraction", p.replan_floor_span_fraction, U::kNone, 0.0, 1.0, "no plans in this last share of the span");
   v("drag_ratio_min", p.drag_ratio_min, U::kNone, 0.1, 1.0, "least sensed drag ratio K");
@@ -151,6 +170,7 @@ inline const char* pc_params_inconsistency(const PredictorCorrectorParams& p) {
   if (!(p.drag_ratio_min < p.drag_ratio_max)) return "drag_ratio_min";
   if (!(p.lod_ratio_min < p.lod_ratio_max)) return "lod_ratio_min";
   if (!(p.miss_tol_m <= p.accept_miss_m)) return "miss_tol_m";
+  if (!(p.altitude_predictions < p.max_predictions)) return "altitude_predictions";
   if (!(p.terminal_gamma_min_rad <= p.terminal_gamma_max_rad)) return "terminal_gamma_min_deg";
   return nullptr;
 }

@@ -203,6 +203,7 @@ Status PredictorCorrectorPlanner::plan(const RelativeState& from, ReferenceProfi
   diag_.predictions = r.predictions;
   diag_.sigma0_rad = r.sigma0_rad;
   diag_.alpha_shift_rad = r.alpha_shift_rad;
+  diag_.control = r.control;
   diag_.sigmaf_rad = bank.sigmaf_rad();
   diag_.density_ratio = k;
   diag_.lift_scale = models_.aero().lift_scale();
@@ -219,13 +220,14 @@ CorrectorResult PredictorCorrectorPlanner::solve(const PredictionStart& start, B
   // sigma_0 for the range; then, while the predicted TAEM altitude misses its target (a late
   // reversal rolls through wings level), the terminal line's aim moved by the miss and sigma_0
   // solved again from its last value, within one budget of predictions.
-  CorrectorResult r = corrector_.solve(predictor_, start, bank, params_, params_.max_predictions, &out, &scratch_);
+  const int first = params_.max_predictions - (params_.altitude_iterations > 0 ? params_.altitude_predictions : 0);
+  CorrectorResult r = corrector_.solve(predictor_, start, bank, params_, first, &out, &scratch_);
   int used = r.predictions;
   const double band = mission_.taem.altitude_tol_m;
   for (int i = 0; i < params_.altitude_iterations && used < params_.max_predictions && r.best.usable(); ++i) {
     const double dh = r.best.altitude_m - taem_altitude_;
     if (std::fabs(dh) <= params_.altitude_tol_fraction * band) break;
-    bank.terminal_altitude_m = clamp(bank.terminal_altitude_m - dh, taem_altitude_ - band, taem_altitude_ + band);
+    bank.terminal_altitude_m = clamp(bank.terminal_altitude_m - dh, taem_altitude_ - 2.0 * band, taem_altitude_ + 2.0 * band);
     bank.control = r.control;
     r = corrector_.solve(predictor_, start, bank, params_, params_.max_predictions - used, &out, &scratch_);
     used += r.predictions;

@@ -25,6 +25,7 @@ struct PcPlanDiagnostics {
   double sigma0_rad = 0.0;
   double sigmaf_rad = 0.0;
   double alpha_shift_rad = 0.0;  // ranging alpha within the band
+  double control = 0.0;          // the corrector's free parameter (BankProfile::control)
   double density_ratio = 1.0;    // K of the plan's state
   double lift_scale = 1.0;       // L/D estimate used
   double miss_along_m = 0.0;     // predicted along-track to go at TAEM (> 0 short)

@@ -26,6 +26,7 @@ void PointMassModel::init(const OnboardModels* models, const AlphaProfile* alpha
   earth_rate_radps_ = earth_rate_radps;
   density_ratio_ = 1.0;
   alpha_shift_rad_ = 0.0;
+  alpha_modulation_rad_ = 0.0;
 }
 
 double PointMassModel::profile_alpha_at(double energy_Jpkg) const {
@@ -33,7 +34,7 @@ double PointMassModel::profile_alpha_at(double energy_Jpkg) const {
 }
 
 double PointMassModel::alpha_at(double energy_Jpkg) const {
-  const double a = alpha_profile_->alpha_rad(energy_Jpkg / entry_energy_Jpkg_);
+  const double a = alpha_profile_->alpha_rad(energy_Jpkg / entry_energy_Jpkg_) + alpha_modulation_rad_;
   if (alpha_shift_rad_ == 0.0) return clamp(a, 0.0, alpha_max_rad_);
   const double span = shift_e_full_Jpkg_ - shift_e_zero_Jpkg_;
   const double w = span > 0.0 ? clamp((energy_Jpkg - shift_e_zero_Jpkg_) / span, 0.0, 1.0) : 1.0;

@@ -57,6 +57,8 @@ class PointMassModel {
     shift_e_full_Jpkg_ = e_full_Jpkg;
     shift_e_zero_Jpkg_ = e_zero_Jpkg;
   }
+  /// An offset on top (the reversal's lift modulation of one guidance step; 0 outside).
+  void set_alpha_modulation(double offset_rad) { alpha_modulation_rad_ = offset_rad; }
   double alpha_at(double energy_Jpkg) const;
   double profile_alpha_at(double energy_Jpkg) const;
   AeroSample aero(const PointMassState& x, double alpha_rad) const;
@@ -76,6 +78,7 @@ class PointMassModel {
   double earth_rate_radps_ = kEarthRate_radps;
   double density_ratio_ = 1.0;
   double alpha_shift_rad_ = 0.0;
+  double alpha_modulation_rad_ = 0.0;
   double shift_e_full_Jpkg_ = 0.0;
   double shift_e_zero_Jpkg_ = 0.0;
 };

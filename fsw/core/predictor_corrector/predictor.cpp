@@ -132,7 +132,12 @@ double Predictor::command(const PointMassState& x, const AeroSample& a, double e
   const double sigma_dot = bank.slope_per_Jpkg() * a.drag_mps2 * x.velocity_mps;
   const double hdot_glide = qeg_altitude_rate_mps(x.velocity_mps, x.radius_m, x.latitude_rad, x.heading_rad,
                                                   a.drag_mps2, H, in.sigma_base_rad, sigma_dot);
-  in.hdot_ref_mps = hdot_glide;
+  // The glide's height differs from the vehicle's by H ln(L cos(sigma_base) / need) (L ~ rho).
+  const double need = level_flight_lift_need_mps2(x.radius_m, x.velocity_mps * std::cos(x.flight_path_rad),
+                                                  x.latitude_rad, x.heading_rad);
+  const double vertical = a.lift_mps2 * std::cos(in.sigma_base_rad);
+  const double to_glide_m = need > 0.0 && vertical > 0.0 ? H * std::log(vertical / need) : 0.0;
+  in.hdot_ref_mps = hdot_glide + position_gain_ps(need, H, *params_) * clamp(to_glide_m, -3.0 * H, 3.0 * H);
   TerminalAltitude terminal = config_.terminal;
   terminal.target_altitude_m = bank.terminal_altitude_m;
   in.terminal = terminal.at(energy, a.altitude_m, x.velocity_mps, a.drag_mps2, *params_);
@@ -216,22 +221,39 @@ Prediction Predictor::run(const PredictionStart& start, const BankProfile& bank,
   for (int k = 0; k < params_->max_steps; ++k) {
     const AeroSample a = model_->aero(x, model_->alpha_at(e));
     note_air(a, x.velocity_mps, pr);
-    captured = captured || a.drag_mps2 >= config_.capture_drag_mps2;
+    if (!captured) {
+      const double need = level_flight_lift_need_mps2(x.radius_m, x.velocity_mps * std::cos(x.flight_path_rad),
+                                                      x.latitude_rad, x.heading_rad);
+      captured = capture_due(a.drag_mps2, a.lift_mps2, x.velocity_mps * std::sin(x.flight_path_rad), need,
+                             local_scale_height_m(model_->models(), a.altitude_m), config_.capture_drag_mps2, *params_);
+    }
     if (captured) {
       const int sign = lateral.sign;
       sigma_cmd = command(x, a, e, bank, filter.value(), lateral);
       if (sign == 0) pr.first_sign = lateral.sign;
       else if (lateral.sign != sign && ++pr.reversals == 1) pr.first_reversal_energy_Jpkg = e;
     }
+    const double s_a = filter.value(), s_b = filter.step(sigma_cmd);
+    // The roll's lift modulation over the step (the bank at mid-step), within the band.
+    const double alpha_min = model_->profile_alpha_at(e) - params_->alpha_band_rad;
+    double alpha_mod = lateral.reversing ? modulated_alpha_rad(model_->models().aero(), a.alpha_rad, a.mach,
+                                                               std::fabs(sigma_cmd), 0.5 * (s_a + s_b),
+                                                               config_.sigma_rate_max_radps, alpha_min, *params_)
+                                         : a.alpha_rad;
+    if (a.cd > 0.0) {
+      alpha_mod = load_relief_alpha_rad(model_->models().aero(), alpha_mod, a.mach, a.drag_mps2 / a.cd, config_.limits,
+                                        alpha_min);
+    }
+    model_->set_alpha_modulation(alpha_mod - a.alpha_rad);
     if (trace != nullptr && trace->n < PredictionTrace::kCapacity) {
       trace->t_s[trace->n] = t;
-      trace->sigma_rad[trace->n] = filter.value();
-      trace->alpha_rad[trace->n++] = a.alpha_rad;
+      trace->sigma_rad[trace->n] = s_a;
+      trace->alpha_rad[trace->n++] = alpha_mod;
     }
-    const double s_a = filter.value(), s_b = filter.step(sigma_cmd);
     PointMassState xn;
     double en = 0.0, h = 0.0;
     const bool at_taem = step(x, e, s_a, s_b, ef, xn, en, h);
+    model_->set_alpha_modulation(0.0);
     if (!finite_state(xn) || !std::isfinite(en)) {
       pr.end = PredictionEnd::kNonFinite;
       break;
