@@ -41,7 +41,7 @@ struct PredictorCorrectorParams {
   // Final bank sigma_f of the linear profile: the quasi-equilibrium glide bank at the TAEM state
   // of the target altitude (bounded), or a share of sigma_0.
   double final_bank_max_rad = 80.0 * M_PI / 180.0;
-  double final_bank_share = 1.0;   // sigma_f = share sigma_0 + (1 - share) sigma_glide
+  double final_bank_share = 0.0;   // sigma_f = share sigma_0 + (1 - share) sigma_glide
   int taem_altitude_samples = 60;  // scan of the TAEM altitude band for the target altitude
   // TAEM altitude: while the predicted TAEM altitude misses the target by more than
   // altitude_tol_fraction of the TAEM altitude tolerance, the terminal line's aim is moved by the

@@ -55,7 +55,7 @@ Status PredictorCorrectorPlanner::init(const OnboardModels& models, const AlphaP
   return Status::kOk;
 }
 
-double PredictorCorrectorPlanner::taem_altitude_target() const {
+double PredictorCorrectorPlanner::taem_altitude_target() {
   // The altitude deepest inside the TAEM altitude and Mach bands at the TAEM energy where q and
   // q alpha at the TAEM alpha stay within their planned fraction (as the drag law's planner).
   const TaemTarget& t = mission_.taem;
@@ -63,6 +63,7 @@ double PredictorCorrectorPlanner::taem_altitude_target() const {
   if (!(t.altitude_tol_m > 0.0)) return t.altitude_m;
   const double alpha = model_.alpha_at(taem_energy_);
   double best_h = t.altitude_m, best_depth = -1e300;
+  taem_aim_min_m_ = t.altitude_m + t.altitude_tol_m;
   const int n = params_.taem_altitude_samples;
   for (int i = 0; i <= n; ++i) {
     const double h = t.altitude_m - t.altitude_tol_m + 2.0 * t.altitude_tol_m * i / n;
@@ -72,6 +73,7 @@ double PredictorCorrectorPlanner::taem_altitude_target() const {
     if ((lim.q_max_Pa > 0.0 && q > lim.q_max_Pa) || (lim.q_alpha_max_Pa_rad > 0.0 && q * alpha > lim.q_alpha_max_Pa_rad)) {
       continue;
     }
+    taem_aim_min_m_ = std::fmin(taem_aim_min_m_, h);  // the lowest TAEM altitude within q and q alpha
     const double depth = models_.taem_band_depth(t, taem_energy_, h);
     if (depth > best_depth) {
       best_depth = depth;
@@ -227,7 +229,9 @@ CorrectorResult PredictorCorrectorPlanner::solve(const PredictionStart& start, B
   for (int i = 0; i < params_.altitude_iterations && used < params_.max_predictions && r.best.usable(); ++i) {
     const double dh = r.best.altitude_m - taem_altitude_;
     if (std::fabs(dh) <= params_.altitude_tol_fraction * band) break;
-    bank.terminal_altitude_m = clamp(bank.terminal_altitude_m - dh, taem_altitude_ - 2.0 * band, taem_altitude_ + 2.0 * band);
+    // The aim within the band, never below the lowest TAEM altitude q and q alpha allow.
+    bank.terminal_altitude_m = clamp(bank.terminal_altitude_m - dh, std::fmax(taem_altitude_ - band, taem_aim_min_m_),
+                                     taem_altitude_ + band);
     bank.control = r.control;
     r = corrector_.solve(predictor_, start, bank, params_, params_.max_predictions - used, &out, &scratch_);
     used += r.predictions;

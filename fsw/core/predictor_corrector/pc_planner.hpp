@@ -77,7 +77,7 @@ class PredictorCorrectorPlanner {
 
  private:
   PredictionStart start_from(const RelativeState& from, double& density_ratio);
-  double taem_altitude_target() const;
+  double taem_altitude_target();  // also sets taem_aim_min_m_
   void fill(const CorrectorResult& r, const BankProfile& bank, ReferenceProfile& out) const;
   CorrectorResult solve(const PredictionStart& start, BankProfile& bank, ReferenceProfile& out);
 
@@ -95,6 +95,7 @@ class PredictorCorrectorPlanner {
   double entry_energy_ = 0.0;
   double taem_energy_ = 0.0;
   double taem_altitude_ = 0.0;
+  double taem_aim_min_m_ = 0.0;  // lowest TAEM altitude of the band within q and q alpha
   // The last plan's bank profile: its magnitude at the new start energy is the first guess.
   bool have_last_ = false;
   BankProfile last_bank_;
