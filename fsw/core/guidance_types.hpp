@@ -88,6 +88,7 @@ struct RelativeState {
   double lift_mps2 = 0.0;             // sensed lift acceleration magnitude
   double lift_over_drag_scale = 1.0;  // sensed L/D over the on-board model's, filtered (1: model)
   double bank_rad = 0.0;              // bank flown (the law's filtered command, signed; planner input)
+  double alpha_rad = 0.0;             // alpha flown (the law's filtered command; planner input, 0: not given)
 };
 
 /// x bounded to [lo, hi] (lo <= hi); a NaN passes through (the callers check finiteness).

@@ -396,7 +396,8 @@ CycleOutput Executive::finish_cycle(const NavInput& nav, CycleOutput& out, std::
     }
     if (want) {
       RelativeState from = s;
-      from.bank_rad = out.sigma_rad;  // the bank the law flies (planner input)
+      from.bank_rad = out.sigma_rad;  // the attitude the law flies (planner input)
+      from.alpha_rad = out.alpha_rad;
       request_plan(nav.tick, from);
     }
   }

@@ -6,7 +6,7 @@ namespace reentry::fsw {
 namespace {
 
 constexpr double kFarTooLong_m = -1e7;           // z of a prediction that skips out or times out
-constexpr double kMaxStep_rad = 30.0 * M_PI / 180.0;
+constexpr double kMaxStep_rad = 45.0 * M_PI / 180.0;
 
 }  // namespace
 

@@ -1,7 +1,7 @@
 // The corrector of the predictor-corrector law (Lu 2014): solves for the one free parameter
 // (sigma_0, BankProfile's control u) of the bank profile so that the predicted along-track distance still to go at the
 // TAEM energy, z(sigma_0), is zero. z rises with sigma_0 (more bank, more drag, a shorter
-// flight). Safeguarded secant: the secant step is bounded (first_step .. 30 deg), a step that
+// flight). Safeguarded secant: the secant step is bounded (first_step .. 45 deg), a step that
 // does not reduce |z| is halved back towards the best point, and once z has changed sign the
 // root is kept bracketed (Illinois regula falsi); at most max_predictions predictions.
 // When the target is out of reach the minimum-miss answer is the bound of the control that flies

@@ -12,7 +12,7 @@ int sign_of(double bank_rad) { return bank_rad > 0.0 ? 1 : (bank_rad < 0.0 ? -1 
 bool finite_state(const RelativeState& s) {
   const double v[] = {s.t_s,           s.radius_m,      s.longitude_rad, s.latitude_rad,         s.velocity_mps,
                       s.flight_path_rad, s.heading_rad, s.energy_Jpkg,   s.drag_mps2, s.lift_over_drag_scale,
-                      s.bank_rad};
+                      s.bank_rad, s.alpha_rad};
   for (double x : v) {
     if (!std::isfinite(x)) return false;
   }
@@ -132,11 +132,12 @@ PredictionStart PredictorCorrectorPlanner::start_from(const RelativeState& from,
   PointMassState x = point_mass_from(from);
   for (int i = 0; i < timing_.latency_ticks; ++i) x.velocity_mps += from.drag_mps2 * timing_.tick_s;
   models_.aero().set_lift_scale(clamp(from.lift_over_drag_scale, params_.lod_ratio_min, params_.lod_ratio_max));
-  // K at the alpha flown: the profile's with the last plan's shift (ramped as it flew it).
+  // K at the alpha flown (given by the executive; else the profile's with the last plan's shift).
   model_.set_density_ratio(1.0);
   model_.set_alpha_shift(have_last_ ? last_bank_.alpha_shift_rad() : 0.0,
                          taem_energy_ + params_.terminal_span_fraction * (entry_energy_ - taem_energy_), taem_energy_);
-  const AeroSample a = model_.aero(x, model_.alpha_at(energy_of(x)));
+  const double alpha_flown = from.alpha_rad > 0.0 ? from.alpha_rad : model_.alpha_at(energy_of(x));
+  const AeroSample a = model_.aero(x, alpha_flown);
   density_ratio = 1.0;
   if (from.drag_mps2 >= 0.1 * capture_drag_mps2_ && a.drag_mps2 > 0.0) {
     density_ratio = clamp(from.drag_mps2 / a.drag_mps2, params_.drag_ratio_min, params_.drag_ratio_max);

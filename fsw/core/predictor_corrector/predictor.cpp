@@ -79,7 +79,7 @@ double BankProfile::alpha_shift_rad() const {
   if (u <= lateral_bank_rad) return -alpha_band_rad;
   if (u <= lateral_bank_rad + alpha_span) return -alpha_band_rad * (1.0 - (u - lateral_bank_rad) / alpha_span);
   const double past = u - (bank_max_rad + alpha_span);
-  return past > 0.0 ? alpha_band_rad * past / alpha_span : 0.0;
+  return past > 0.0 ? alpha_band_rad * std::fmin(past / alpha_span, 1.0) : 0.0;
 }
 
 double BankProfile::control_for_bank(double sigma0_rad) const {
