@@ -144,7 +144,7 @@ TEST(PcPredictor, EquilibriumGlideCoversTheAnalyticRange) {
   start.lateral.sign = 1;
   start.captured = true;
   BankProfile bank;
-  bank.bank_max_rad = 85.0 * kDeg;
+  bank.bank_max_rad = bank.bank_far_rad = 85.0 * kDeg;
   bank.control = bank.sigma_glide_rad = sigma;
   bank.e0_Jpkg = e0;
   bank.ef_Jpkg = ef;
@@ -223,7 +223,8 @@ TEST(PcCorrector, OutOfReachReturnsTheBoundThatMissesLeastAndSaysWhichWay) {
     const bool too_short = shift > 0.0;
     EXPECT_EQ(st, too_short ? Status::kRangeTooShort : Status::kRangeTooLong) << to_string(st);
     EXPECT_EQ(c.out->n_points, kProfileCapacity);  // flown as a best effort
-    EXPECT_DOUBLE_EQ(d.sigma0_rad, too_short ? 0.0 : c.planner->params().bank_max_rad);
+    if (too_short) EXPECT_DOUBLE_EQ(d.sigma0_rad, 0.0);                              // the longest flight
+    else EXPECT_GT(d.sigma0_rad, c.planner->params().bank_max_rad);                       // lift down
     EXPECT_DOUBLE_EQ(d.alpha_shift_rad, (too_short ? -1.0 : 1.0) * c.planner->params().alpha_band_rad);
     // Brute force over the whole family (bank, alpha shift, final bank): nothing reaches, and the
     // bound misses least to within 2 % (z is monotonic only up to the lateral logic's jumps).

@@ -112,8 +112,14 @@ CorrectorResult Corrector::solve(const Predictor& predictor, const PredictionSta
     prev = cur;
     cur = next;
   }
-  if (!have_best_) status = Status::kNonFinite;
-  else if (status == Status::kNotConverged && std::fabs(result_.best.along_m) <= params.miss_tol_m) status = Status::kOk;
+  if (!have_best_) {
+    status = Status::kNonFinite;
+  } else if (status == Status::kNotConverged && std::fabs(result_.best.along_m) <= params.miss_tol_m) {
+    status = Status::kOk;
+  } else if (status == Status::kNotConverged && have_neg_ != have_pos_) {
+    // Out of predictions and never across the root: the least miss found, and which way.
+    status = have_pos_ ? Status::kRangeTooShort : Status::kRangeTooLong;
+  }
   result_.status = status;
   result_.converged = status == Status::kOk;
   return result_;

@@ -5,7 +5,8 @@
 // does not reduce |z| is halved back towards the best point, and once z has changed sign the
 // root is kept bracketed (Illinois regula falsi); at most max_predictions predictions.
 // When the target is out of reach the minimum-miss answer is the bound of the control that flies
-// closest (0: longest flight, its maximum: shortest) and the status says which way it misses.
+// closest (0: longest flight, its maximum: shortest), or the least miss found when the
+// predictions run out without crossing the root, and the status says which way it misses.
 // A prediction that skips out or times out counts as far too long; one that is not finite is
 // stepped back from. No heap, no exceptions.
 #pragma once

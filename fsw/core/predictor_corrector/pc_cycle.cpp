@@ -110,6 +110,7 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   in.drag_limit_mps2 = constraint_drag_limit_mps2(models_, limits_, s.velocity_mps, alpha_rad, cl, cd);
   in.drag_limit_rate_ps = constraint_drag_limit_rate_ps(models_, limits_, s.velocity_mps, s.drag_mps2, alpha_rad, cl, cd);
   in.sigma_rate_radps = sigma_rate_max_radps_;
+  in.skip_phase = s.drag_mps2 < capture_drag_mps2_;
   PcLateralInput li;
   li.energy_Jpkg = s.energy_Jpkg;
   li.velocity_mps = s.velocity_mps;

@@ -168,7 +168,12 @@ BankLawOutput bank_magnitude(const BankLawInput& in, const PredictorCorrectorPar
       cos_sigma += in.terminal.weight * (cos_terminal - cos_sigma);
     }
   }
-  double sigma = clamp(std::acos(clamp(cos_sigma, -1.0, 1.0)), p.bank_min_rad, p.bank_max_rad);
+  // Below the capture drag (a shallow entry's skip) the damping may take the bank past bank_max,
+  // lift down against the climb, up to bank_damped_max; elsewhere within bank_max, or the
+  // profile's own bank where it is past it (the range-long end of the family).
+  const double upper = in.skip_phase ? p.bank_damped_max_rad
+                                     : clamp(in.sigma_base_rad, p.bank_max_rad, p.bank_damped_max_rad);
+  double sigma = clamp(std::acos(clamp(cos_sigma, -1.0, 1.0)), p.bank_min_rad, upper);
   // Constraint bound (Lu 2014's predictive bound on the descent, in drag form): the drag may
   // approach its limit no faster than d ln(D / D_lim)/dt <= ln(D_lim / D) / tau; with
   // D ~ rho V^2, rho ~ exp(-h / H) and V' = -D this is a least altitude rate,

@@ -72,6 +72,7 @@ struct BankLawInput {
   double scale_height_m = 7050.0;  // local density scale height -1 / (d ln rho / dh)
   double sigma_rate_radps = 0.0;   // the mission's bank rate limit
   TerminalCommand terminal;        // terminal altitude law (weight 0: none)
+  bool skip_phase = false;         // captured below the threshold drag (a shallow entry): lift down allowed
 };
 struct BankLawOutput {
   double sigma_rad = 0.0;        // magnitude commanded

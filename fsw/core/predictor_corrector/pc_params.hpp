@@ -26,6 +26,7 @@ struct PredictorCorrectorParams {
   double first_step_rad = 5.0 * M_PI / 180.0;  // secant's second sigma_0 from the first
   double bank_max_rad = 85.0 * M_PI / 180.0;   // largest |sigma| of the profile and of a command
   double bank_min_rad = 0.0;       // least |sigma| commanded after capture
+  double bank_damped_max_rad = 150.0 * M_PI / 180.0;  // the damping's largest bank (lift down against a skip)
   // Alpha band: alpha stays within alpha_band of the mission's profile (the oracle judges with the
   // same band, tools/mc --oracle-alpha-band). The corrector's one free parameter also moves alpha
   // inside it (BankProfile): a range-short flight keeps lateral_bank and flies the band's L/D
@@ -119,6 +120,7 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("first_step_deg", p.first_step_rad, U::kDeg, 0.1, 45.0, "corrector: second sigma_0 from the first");
   v("bank_max_deg", p.bank_max_rad, U::kDeg, 10.0, 150.0, "largest bank magnitude (profile and command)");
   v("bank_min_deg", p.bank_min_rad, U::kDeg, 0.0, 60.0, "least bank magnitude after capture");
+  v("bank_damped_max_deg", p.bank_damped_max_rad, U::kDeg, 10.0, 180.0, "largest bank of the damping (lift down)");
   v("alpha_band_deg", p.alpha_band_rad, U::kDeg, 0.0, 20.0, "alpha within this of the mission's profile");
   v("lateral_bank_deg", p.lateral_bank_rad, U::kDeg, 0.0, 90.0, "bank kept while alpha gives range");
   v("alpha_control_scale", p.alpha_control_scale, U::kNone, 0.1, 100.0, "corrector control per alpha shift");
@@ -165,6 +167,7 @@ void visit_pc_params(Params& p, Visitor&& v) {
 inline const char* pc_params_inconsistency(const PredictorCorrectorParams& p) {
   if (!(p.bank_min_rad < p.bank_max_rad)) return "bank_min_deg";
   if (!(p.lateral_bank_rad <= p.bank_max_rad)) return "lateral_bank_deg";
+  if (!(p.bank_max_rad <= p.bank_damped_max_rad)) return "bank_damped_max_deg";
   if (!(p.final_bank_max_rad <= p.bank_max_rad)) return "final_bank_max_deg";
   if (!(p.corridor_taem_rad <= p.corridor_entry_rad)) return "corridor_taem_deg";
   if (!(p.drag_ratio_min < p.drag_ratio_max)) return "drag_ratio_min";

@@ -102,6 +102,7 @@ BankProfile PredictorCorrectorPlanner::bank_family() const {
   BankProfile b;
   b.lateral_bank_rad = params_.lateral_bank_rad;
   b.bank_max_rad = params_.bank_max_rad;
+  b.bank_far_rad = params_.bank_damped_max_rad;
   b.alpha_band_rad = params_.alpha_band_rad;
   b.alpha_span = params_.alpha_control_scale * params_.alpha_band_rad;
   b.final_share = params_.final_bank_share;

@@ -70,7 +70,8 @@ double BankProfile::sigma0_rad() const {
   const double u = clamp(control, 0.0, control_max());
   if (u <= lateral_bank_rad) return u;
   if (u <= lateral_bank_rad + alpha_span) return lateral_bank_rad;
-  return std::fmin(u - alpha_span, bank_max_rad);
+  const double far = u - (bank_max_rad + 2.0 * alpha_span);
+  return far > 0.0 ? bank_max_rad + far : std::fmin(u - alpha_span, bank_max_rad);
 }
 
 double BankProfile::alpha_shift_rad() const {
@@ -118,7 +119,7 @@ double Predictor::command(const PointMassState& x, const AeroSample& a, double e
   const OnboardModels& models = model_->models();
   const double H = local_scale_height_m(models, a.altitude_m);
   BankLawInput in;
-  in.sigma_base_rad = clamp(bank.at(energy), 0.0, params_->bank_max_rad);  // alpha: a.alpha_rad (shifted)
+  in.sigma_base_rad = clamp(bank.at(energy), 0.0, params_->bank_damped_max_rad);  // alpha: a.alpha_rad (shifted)
   in.sigma_flown_rad = sigma_flown_rad;
   in.velocity_mps = x.velocity_mps;
   in.radius_m = x.radius_m;
@@ -145,6 +146,7 @@ double Predictor::command(const PointMassState& x, const AeroSample& a, double e
   in.drag_limit_rate_ps =
       constraint_drag_limit_rate_ps(models, config_.limits, x.velocity_mps, a.drag_mps2, a.alpha_rad, a.cl, a.cd);
   in.sigma_rate_radps = config_.sigma_rate_max_radps;
+  in.skip_phase = a.drag_mps2 < config_.capture_drag_mps2;
   PcLateralInput li;
   li.energy_Jpkg = energy;
   li.velocity_mps = x.velocity_mps;

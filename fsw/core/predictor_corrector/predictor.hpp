@@ -59,12 +59,14 @@ struct Prediction {
 /// u in [0, s_lat]: sigma0 = u at the full shift -band (a range-short flight keeps the bank
 /// s_lat it needs to turn and flies the band's L/D first); [s_lat, s_lat + w]: sigma0 = s_lat,
 /// the shift from -band to 0; then sigma0 = u - w up to bank_max at no shift; last [0, w]
-/// beyond: sigma0 = bank_max, the shift from 0 to +band (a range-long flight). w = band
-/// times alpha_control_scale (0 without a band).
+/// beyond: sigma0 = bank_max, the shift from 0 to +band (a range-long flight); farthest, at
+/// +band, sigma0 from bank_max on to bank_far (lift down: a range-long flight that must shed
+/// energy, e.g. after a shallow entry). w = band times alpha_control_scale (0 without a band).
 struct BankProfile {
   double control = 0.0;            // u
   double lateral_bank_rad = 0.0;   // s_lat
   double bank_max_rad = 0.0;
+  double bank_far_rad = 0.0;       // >= bank_max: the range-long end's bank (lift down)
   double alpha_band_rad = 0.0;
   double alpha_span = 0.0;         // w
   double sigma_glide_rad = 0.0;
@@ -72,7 +74,7 @@ struct BankProfile {
   double e0_Jpkg = 0.0;
   double ef_Jpkg = 0.0;
   double terminal_altitude_m = 0.0;
-  double control_max() const { return bank_max_rad + 2.0 * alpha_span; }
+  double control_max() const { return bank_max_rad + 2.0 * alpha_span + (bank_far_rad - bank_max_rad); }
   double sigma0_rad() const;
   double alpha_shift_rad() const;
   double sigmaf_rad() const { return final_share * sigma0_rad() + (1.0 - final_share) * sigma_glide_rad; }
