@@ -182,7 +182,10 @@ BankLawOutput bank_magnitude(const BankLawInput& in, const PredictorCorrectorPar
   // sinks faster (an upper bound on |sigma|; above the limit hdot_min > 0: a climb).
   const double lod = in.drag_mps2 > 1e-9 ? in.lift_mps2 / in.drag_mps2 : 0.0;
   if (in.drag_limit_mps2 < kUnbounded && in.drag_mps2 > 1e-6 && in.lift_mps2 > 1e-6) {
-    out.hdot_min_mps = -in.scale_height_m * (std::log(in.drag_limit_mps2 / in.drag_mps2) / p.constraint_time_s +
+    // The horizon grows by the roll to wings level (a slow roll from a large bank lets the
+    // vehicle sink for that long before the lift comes back).
+    const double roll_s = in.sigma_rate_radps > 0.0 ? std::fabs(in.sigma_flown_rad) / in.sigma_rate_radps : 0.0;
+    out.hdot_min_mps = -in.scale_height_m * (std::log(in.drag_limit_mps2 / in.drag_mps2) / (p.constraint_time_s + roll_s) +
                                              2.0 * in.drag_mps2 / v + in.drag_limit_rate_ps);
     if (hdot < out.hdot_min_mps) {
       const double cos_bound = (need + p.constraint_gain_ps * (out.hdot_min_mps - hdot)) / in.lift_mps2;
