@@ -85,8 +85,10 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   const PlanPoint plan = plan_at(s.energy_Jpkg);
   const double h = s.radius_m - surface_radius_m(s.latitude_rad);
   const double mach = models_.mach(h, s.velocity_mps);
+  // The limits hold at the alpha flown (the sensed drag's): its coefficients give the drag limit.
+  const double alpha_flown = attitude_given_ ? flown_alpha_rad_ : alpha_rad;
   double cl = 0.0, cd = 0.0;
-  models_.aero().coefficients(alpha_rad, mach, cl, cd);
+  models_.aero().coefficients(alpha_flown, mach, cl, cd);
   cl *= estimator_.lift_over_drag_ratio();
   BankLawInput in;
   in.sigma_base_rad = std::fabs(plan.sigma_rad);
@@ -107,8 +109,9 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   in.terminal = terminal.at(s.energy_Jpkg, h, s.velocity_mps, s.drag_mps2, params_);
   in.drag_mps2 = s.drag_mps2;
   in.lift_mps2 = s.lift_mps2;
-  in.drag_limit_mps2 = constraint_drag_limit_mps2(models_, limits_, s.velocity_mps, alpha_rad, cl, cd);
-  in.drag_limit_rate_ps = constraint_drag_limit_rate_ps(models_, limits_, s.velocity_mps, s.drag_mps2, alpha_rad, cl, cd);
+  in.drag_limit_mps2 = constraint_drag_limit_mps2(models_, limits_, s.velocity_mps, alpha_flown, cl, cd);
+  in.drag_limit_rate_ps =
+      constraint_drag_limit_rate_ps(models_, limits_, s.velocity_mps, s.drag_mps2, alpha_flown, cl, cd);
   in.sigma_rate_radps = sigma_rate_max_radps_;
   in.skip_phase = s.drag_mps2 < capture_drag_mps2_;
   PcLateralInput li;
@@ -134,11 +137,7 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
                                             sigma_rate_max_radps_, alpha_min, params_)
                       : alpha_rad;
   // Load relief at the present q (sensed drag over the model's C_D at the alpha flown).
-  const double alpha_flown = attitude_given_ ? flown_alpha_rad_ : alpha_rad;
-  const double cd_flown = models_.aero().cd(alpha_flown, mach);
-  if (cd_flown > 0.0) {
-    out.alpha_rad = load_relief_alpha_rad(models_.aero(), out.alpha_rad, mach, s.drag_mps2 / cd_flown, limits_, alpha_min);
-  }
+  if (cd > 0.0) out.alpha_rad = load_relief_alpha_rad(models_.aero(), out.alpha_rad, mach, s.drag_mps2 / cd, limits_, alpha_min);
   out.phase = sign * in.sigma_flown_rad < 0.0 ? Phase::kReversal : Phase::kTracking;
   out.drag_ref_mps2 = plan.drag_mps2;
   out.drag_err_mps2 = s.drag_mps2 - plan.drag_mps2;
