@@ -2,7 +2,7 @@
 """Write config/missions/*.toml from thesis tables 3.1 / 3.3 (DESIGN.md 7 reading of signs).
 Required TAEM heading = great-circle arrival azimuth at the TAEM point of the great circle
 from the entry point (our definition; the thesis gives only 'heading towards the HAC')."""
-import math, os
+import math, os, textwrap
 D = math.pi / 180
 BTU = 11356.5267; PSF = 47.880259
 # Dispersed quantities (DESIGN 8), the same numbers in the Gaussian reference set (3 sigma) and
@@ -20,6 +20,10 @@ mass_scale = 0.05
 wind_scale_min = 0.0             # wind profile scale range (gaussian: about its centre, 3 sigma at its ends)
 wind_scale_max = 1.5
 """
+def comment_block(text, width=98):
+    """A note as '# ' comment lines of at most width + 2 characters."""
+    return "\n".join("# " + l for l in textwrap.wrap(text, width, break_on_hyphens=False))
+
 def arrival_az(lon1, lat1, lon2, lat2):
     p1, p2, dl = lat1 * D, lat2 * D, (lon2 - lon1) * D
     # azimuth at point 2 of the course from 1 to 2 = reverse of initial azimuth from 2 to 1, + 180
@@ -40,7 +44,18 @@ flight_path_tol_deg = 5.0
 heading_tol_deg = 30.0        # heading towards HAC +- 30 deg
 hac_radius_m = 4650.0         # not given for HORUS: X-33 value (9.3 km diameter) adopted""",
    alpha=[(0.0, 17.0), (0.016, 17.0), (0.05, 30.0), (0.135, 43.9), (1.0, 43.9)],
-   alpha_note="OUR profile: alpha_max (43.9 deg) above E/E_entry = 0.135, 30 deg at 0.05, then a ramp to 17 deg at the TAEM energy (0.016), held below it. The thesis reference (~40 deg, then ~20 deg) left the heat-flux-limited drag corridor too narrow for the 6506 km range (planner: corridor closed, SIL miss 1351 km); a higher alpha lowers heat flux and range (thesis 6.2), so alpha_max is flown through the heat pulse. The mission is range-long at its drag limits, and the terminal phase rides the q*alpha bound, where D = (q alpha)_max (S/m) C_D(alpha) / alpha grows with alpha (C_D / alpha rises with alpha for HORUS): 30 deg there gives more drag than 25 deg within q*alpha (nominal 10.3 km past the aim point with q*alpha 6 % over the limit -> 1.3 km, within it). At TAEM the alpha sets how wide the acceptable TAEM state is: at the TAEM energy, q*alpha <= 191 kPa deg (a floor on the altitude) and Mach >= 2.2 (a ceiling) leave an altitude window of 0.57 km at 20 deg, 1.09 km at 18 deg, 1.38 km at 17 deg and 1.68 km at 16 deg (US76), against an end-game altitude scatter of 0.4 km (sd, dispersed). Dispersed (seed 7 x 500 / seed 1000 x 500), ramp from 30 deg at 0.06: ending at 20 deg from 0.02 on (the profile until session 15) 78 / 77 successes (63 / 56 below Mach 2.2), at 17 deg at the TAEM energy 115 / 119, 18 deg 113 / 112, 16 deg 100 on seed 7 (range failures 243); reaching 17 or 18 deg only from 0.02 on, a steeper ramp at the end, 117 / 115 on seed 7 with 84 / 28 runs steeper than -12 deg at TAEM. Then the ramp's top, which sets the drag on the q*alpha bound in the terminal phase (nominal miss / seed 7 / seed 1000): 30 deg at 0.06 1.81 km short / 115 / 119; 30 deg at 0.05 1.94 km short / 134 / 125; 32.5 deg at 0.06 2.06 km short / 141 / 133; 35 deg at 0.06 2.55 km / 132 on seed 7; 30 deg at 0.04 2.17 km / 133; 40 deg at 0.06 60 on seed 7 (ending short: 305 range failures). Last, with 30 deg at 0.05, the end of the alpha_max segment, which sets the drag on the heat-flux bound before the terminal phase: 0.15 as above; 0.135 (this profile) 1.76 km short / 146 / 133; 0.12 2.11 km short / 150 on seed 7; 0.18 1.88 km / 113. This profile is the best of those that keep the nominal within 2 km."),
+   alpha_note=("OUR profile: alpha_max (43.9 deg) above E/E_entry = 0.135, 30 deg at 0.05, then a ramp to 17"
+               " deg at the TAEM energy (0.016), held below it. The thesis reference (about 40 deg, then "
+               "about 20 deg) leaves the heat-flux-limited drag corridor too narrow for the 6506 km range; a"
+               " higher alpha lowers heat flux and range (thesis 6.2), so alpha_max is flown through the "
+               "heat pulse. The end of the alpha_max segment sets the drag on the heat-flux bound before the"
+               " terminal phase. The terminal phase rides the q*alpha bound, where D = (q alpha)_max (S/m) "
+               "C_D(alpha) / alpha grows with alpha (C_D / alpha rises with alpha for HORUS): the 30 deg at "
+               "the top of the ramp give the range more drag there than a lower alpha within q*alpha. At the"
+               " TAEM energy, q*alpha <= 191 kPa deg (a floor on the altitude) and Mach >= 2.2 (a ceiling) "
+               "leave an altitude window of 0.57 km at 20 deg, 1.09 km at 18 deg, 1.38 km at 17 deg and 1.68"
+               " km at 16 deg (US76): 17 deg keeps it wider than the end-game altitude scatter. Alternatives"
+               " and their reasons: docs/guidance_design.md, section 9.2.")),
  "x33": dict(src="table 3.3 (Shen 2002, Saraf et al. 2003)", vehicle="x33", h=120.1, lon=225.5, lat=-23.75, v=7627, g=-1.249, chi=49.59,
    th=29.4, tv=918.8, tlon=279.5, tlat=28.7, comment_lat="28.7 N (Kennedy)",
    qdot=("%.4f" % (75 * BTU), "75 BTU/(ft^2 s)"), n=3.0, qa=("%.4f" % (7000 * PSF * D), "7000 psf deg = 335,161.8 Pa deg -> Pa rad"), q=("%.5f" % (300 * PSF), "300 psf"), amax=50, adot=5, sdot=5,
@@ -125,7 +140,7 @@ alpha_accel_max_degps2 = 5.0   # OUR choice (thesis names the limit, no value)
 sigma_accel_max_degps2 = 5.0   # OUR choice
 
 [alpha_profile]
-# {m['alpha_note']}
+{comment_block(m['alpha_note'])}
 energy = [{', '.join('%.3f' % e for e, _ in m['alpha'])}]
 alpha_deg = [{', '.join('%.1f' % a for _, a in m['alpha'])}]
 
@@ -164,8 +179,8 @@ time_limit_s = 4000.0
 distribution = "gaussian"
 {DISPERSIONS}
 [stress_dispersions]
-# Stress campaign (tools/mc --dispersions stress): the same numbers as uniform half-widths (the
-# campaigns of sessions 1-16), every value up to the edge as likely as the nominal one.
+# Stress campaign (tools/mc --dispersions stress): the same numbers as uniform half-widths,
+# every value up to the edge as likely as the nominal one.
 distribution = "uniform"
 {DISPERSIONS}
 [environment]
@@ -180,7 +195,7 @@ wind_profile = "../environment/earthgram_nominal_wind.txt"
         # Variant without a hand-made alpha profile: planned at guidance start-up (thesis ch. 6).
         import re
         v = s.replace('name = "x33"', 'name = "x33_planned_alpha"', 1)
-        v = re.sub(r"\[alpha_profile\]\n#[^\n]*\nenergy = [^\n]*\nalpha_deg = [^\n]*\n",
+        v = re.sub(r"\[alpha_profile\]\n(#[^\n]*\n)+energy = [^\n]*\nalpha_deg = [^\n]*\n",
                    "[alpha_profile]\n# No hand-made profile: planned at guidance start-up by the angle-of-attack planner\n"
                    "# (thesis ch. 6) with its default shaping rule (fsw/guidance/alpha_profile_source.hpp).\n"
                    "source = \"planned\"\n", v, count=1)

@@ -50,6 +50,11 @@ def tune(n2, ld_t, a_t):
 def fmt_row(v):
     return "[" + ", ".join("%.6f" % x for x in v) + "]"
 
+def wrapped_row(name, v, per_line=12):
+    """`name = [...]` over several lines (TOML multi-line array): no config line over 300 characters."""
+    chunks = [", ".join("%.6f" % x for x in v[i:i + per_line]) for i in range(0, len(v), per_line)]
+    return "%s = [%s]\n" % (name, ",\n  ".join(chunks))
+
 def table(name, rows):
     return "%s = [\n%s\n]\n" % (name, ",\n".join("  " + fmt_row(r) for r in rows))
 
@@ -72,7 +77,7 @@ def model_vehicle(key, header, n2, mach, targets, alphas, extra=""):
     s += 'source = "MODEL (not public data): modified-Newtonian CN = n1(M) sin a + %.3f sin^2 a, CA = c0(M), tuned to thesis L/D figures; see header"\n' % n2
     s += 'out_of_range = "clamp"\n'
     s += extra
-    s += "alpha_deg = " + fmt_row(alphas) + "\n"
+    s += wrapped_row("alpha_deg", alphas)
     s += "mach = " + fmt_row(mach) + "\n"
     s += "# rows: one per alpha, columns: one per Mach\n"
     s += table("cl", rows_cl) + table("cd", rows_cd)

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <vector>
 
+#include "app/guidance_messages.hpp"
 #include "transport/lcm_codec.hpp"
 #include "transport/monotonic_clock.hpp"
 #include "transport/run_log.hpp"
@@ -138,52 +139,30 @@ void GuidanceNode::handle_nav(const nav_state_t& nav) {
   }
 }
 
-void GuidanceNode::fill_cmd(const exec::CycleOutput& out) {
-  cmd_.utime = std::llround(out.t_s * 1e6);
-  cmd_.tick = out.tick;
-  cmd_.alpha_rad = out.alpha_rad;
-  cmd_.beta_rad = 0.0;
-  cmd_.sigma_rad = out.sigma_rad;
-  cmd_.mode = static_cast<std::int8_t>(out.phase);
-  cmd_.plan_seq = out.plan_seq;
-  cmd_.health_flags = out.health_flags;
-}
+void GuidanceNode::fill_cmd(const exec::CycleOutput& out) { fill_command(out, cmd_); }
 
 void GuidanceNode::fill_status(const exec::CycleOutput& out) {
+  // The process's own fields; the executive's come from its cycle output and counters, each by
+  // its name in guidance_status_t.lcm (generated fill: a field without a source does not build).
   const exec::ExecCounters& c = exec_.counters();
-  status_.utime = std::llround(out.t_s * 1e6);
-  status_.tick = out.tick;
-  status_.phase = static_cast<std::int8_t>(out.phase);
-  status_.mode = static_cast<std::int8_t>(mode_);
-  status_.health_flags = out.health_flags;
-  status_.cycle_us_last = c.cycle_us_last;
-  status_.cycle_us_max = c.cycle_us_max;
-  status_.jitter_us_last = jitter_us_last_;
-  status_.jitter_us_max = jitter_us_max_;
-  status_.cycle_overruns = cycle_overruns_;
-  status_.plan_overruns = c.plan_overruns;
-  status_.planner_runs = c.planner_runs;
-  status_.planner_ms_last = c.planner_ms_last;
-  status_.planner_ms_max = c.planner_ms_max;
-  status_.plan_age_s = c.plan_adopted_t_s >= 0.0 ? out.t_s - c.plan_adopted_t_s : -1.0;
-  status_.plan_latency_ms = c.plan_latency_ms;
-  status_.plan_seq = out.plan_seq;
-  status_.bad_messages = bad_messages_;
-  status_.invalid_nav = c.invalid_nav;
-  status_.duplicate_ticks = c.duplicate_ticks;
-  status_.skipped_ticks = c.skipped_ticks;
-  status_.drag_err_mps2 = out.drag_err_mps2;
-  status_.heading_err_rad = out.heading_err_rad;
-  status_.plan_waits = c.plan_waits;
-  status_.plan_wait_ms_last = c.plan_wait_ms_last;
-  status_.plan_wait_ms_max = c.plan_wait_ms_max;
-  status_.nav_rejected_tick = c.nav_rejected_tick;
+  AdapterStatus a;
+  a.mode = mode_;
+  a.jitter_us_last = jitter_us_last_;
+  a.jitter_us_max = jitter_us_max_;
+  a.cycle_overruns = cycle_overruns_;
+  a.plan_age_s = c.plan_adopted_t_s >= 0.0 ? out.t_s - c.plan_adopted_t_s : -1.0;
+  a.bad_messages = bad_messages_;
   if (net_ != nullptr) {
-    status_.bad_datagrams = clamp_i32(net_->counters().bad_datagrams);
-    status_.rx_kernel_drops = clamp_i32(net_->counters().kernel_drops);
+    a.bad_datagrams = clamp_i32(net_->counters().bad_datagrams);
+    a.rx_kernel_drops = clamp_i32(net_->counters().kernel_drops);
+  } else {  // no socket (replay, tests): the last figures stand
+    a.bad_datagrams = status_.bad_datagrams;
+    a.rx_kernel_drops = status_.rx_kernel_drops;
   }
-  status_.log_dropped = clamp_i32(log_.dropped());
-  status_.link_silent_ms = link_silent_s_ * 1e3;
+  a.log_dropped = clamp_i32(log_.dropped());
+  a.link_silent_ms = link_silent_s_ * 1e3;
+  reentry::stamp(status_, out.t_s, out.tick);
+  reentry::fill(status_, out, c, a);
 }
 
 void GuidanceNode::on_cycle(const exec::CycleOutput& out) {
@@ -202,58 +181,10 @@ void GuidanceNode::on_cycle(const exec::CycleOutput& out) {
   }
 }
 
-void GuidanceNode::fill_tracker_status(const exec::CycleOutput& out) {
-  const TrackerTelemetry& t = out.tracker;
-  tracker_status_t& m = tracker_;
-  m.utime = std::llround(out.t_s * 1e6);
-  m.tick = out.tick;
-  m.phase = static_cast<std::int8_t>(t.phase);
-  m.flags = static_cast<std::int8_t>((t.reversing ? 1 : 0) | (t.final_reversal_done ? 2 : 0) |
-                                     (t.final_correction_done ? 4 : 0) | (t.pullout_arrested ? 8 : 0) |
-                                     (t.saturated ? 16 : 0));
-  m.drag_ref_mps2 = t.drag_ref_mps2;
-  m.drag_err_mps2 = t.drag_err_mps2;
-  m.drag_integral_mps = t.drag_integral_mps;
-  m.omega_radps = t.omega_radps;
-  m.drag_ratio = t.drag_ratio;
-  m.lift_over_drag_ratio = t.lift_over_drag_ratio;
-  m.corridor_half_width_rad = t.corridor_half_width_rad;
-  m.heading_err_rad = t.heading_err_rad;
-  m.terminal_increment_mps2 = t.terminal_increment_mps2;
-  m.time_to_go_s = t.time_to_go_s;
-  m.mean_bank_rad = t.mean_bank_rad;
-  m.cross_track_m = t.cross_track_m;
-  m.along_track_m = t.along_track_m;
-}
+void GuidanceNode::fill_tracker_status(const exec::CycleOutput& out) { app::fill_tracker_status(out, tracker_); }
 
 void GuidanceNode::fill_plan(std::int64_t tick) {
-  const ReferenceProfile& p = exec_.active_profile();
-  const int n = std::min(p.n_points, static_cast<int>(plan_t::MAX_POINTS));
-  plan_.utime = cmd_.utime;
-  plan_.tick = tick;
-  plan_.seq = p.seq;
-  plan_.n_points = static_cast<std::int16_t>(n);
-  for (int i = 0; i < plan_t::MAX_POINTS; ++i) {
-    const bool in = i < n;
-    plan_.e_norm[i] = in ? p.e_norm[i] : 0.0;
-    plan_.drag_mps2[i] = in ? p.drag_mps2[i] : 0.0;
-    plan_.radius_m[i] = in ? p.radius_m[i] : 0.0;
-    plan_.gamma_rad[i] = in ? p.gamma_rad[i] : 0.0;
-    plan_.sigma_rad[i] = in ? p.sigma_rad[i] : 0.0;
-    plan_.alpha_rad[i] = in ? p.alpha_rad[i] : 0.0;
-  }
-  const double e0 = p.entry_energy_Jpkg != 0.0 ? p.entry_energy_Jpkg : 1.0;
-  plan_.reversal_e_norm = p.reversal_energy_Jpkg / e0;
-  plan_.dc_mps2 = p.dc_mps2;
-  plan_.e1_norm = p.e1_Jpkg / e0;
-  plan_.e2_norm = p.e2_Jpkg / e0;
-  plan_.trajectory_length_m = p.trajectory_length_m;
-  plan_.crossrange_err_m = p.crossrange_err_m;
-  plan_.downrange_err_m = p.downrange_err_m;
-  plan_.iterations = p.iterations;
-  plan_.status = static_cast<std::int8_t>(p.status);
-  plan_.converged = p.converged;
-  plan_.compute_ms = exec_.counters().planner_ms_last;
+  app::fill_plan(exec_.active_profile(), cmd_.utime, tick, exec_.counters().planner_ms_last, plan_);
 }
 
 void GuidanceNode::publish_heartbeat() {

@@ -35,6 +35,21 @@ using NavConvertFn = Status (*)(const nav_state_t& nav, RelativeState& out, void
 
 enum class RunMode : std::int8_t { kLockstep = 0, kRealtime = 1, kReplay = 2 };
 
+/// The guidance process's own fields of guidance_status_t (the executive's come from its cycle
+/// output and counters): named as in guidance_status_t.lcm, copied by the generated fill.
+struct AdapterStatus {
+  RunMode mode = RunMode::kLockstep;
+  double jitter_us_last = 0.0;     // realtime: start-time deviation from the deadline
+  double jitter_us_max = 0.0;
+  std::int32_t cycle_overruns = 0;
+  double plan_age_s = -1.0;        // since the plan in use was adopted (-1: none)
+  std::int32_t bad_messages = 0;
+  std::int32_t bad_datagrams = 0;
+  std::int32_t rx_kernel_drops = 0;
+  std::int32_t log_dropped = 0;
+  double link_silent_ms = 0.0;
+};
+
 struct LiveOptions {
   int link_timeout_ticks = 3;       // simulator silent this many GNC periods: link loss
   double startup_timeout_s = 30.0;  // wait for the first navigation message

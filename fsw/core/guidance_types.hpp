@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "numerics/status.hpp"
+#include "telemetry/core_telemetry.hpp"  // TrackerTelemetry: generated from interfaces/tracker_status_t.lcm
 #include "tracker/tracker_phase.hpp"
 
 namespace reentry::fsw {
@@ -48,29 +49,6 @@ enum class Phase : std::int8_t {
   kReversal = 2,            // open-loop bank reversal at maximum bank rate
   kTerminal = 3,            // close to TAEM
   kSafe = 4,                // link loss / invalid data: safe command held
-};
-
-/// The tracker's internal state, for telemetry (tracker_status_t).
-struct TrackerTelemetry {
-  TrackerPhase phase = TrackerPhase::kInitialDescent;
-  double drag_ref_mps2 = 0.0;
-  double drag_err_mps2 = 0.0;
-  double heading_err_rad = 0.0;
-  double drag_integral_mps = 0.0;        // int (D - D_ref) dt
-  double drag_ratio = 1.0;               // sensed drag / model drag (K)
-  double lift_over_drag_ratio = 1.0;     // sensed L/D / model L/D
-  double corridor_half_width_rad = 0.0;  // heading corridor (0 outside the corridor phase)
-  double terminal_increment_mps2 = 0.0;  // c of the terminal range control
-  double omega_radps = 0.0;              // drag-loop natural frequency this cycle
-  double time_to_go_s = 0.0;
-  double mean_bank_rad = 0.0;
-  double cross_track_m = 0.0;            // from the arrival line (> 0: the line is to the right)
-  double along_track_m = 0.0;            // to the aim point along the line
-  bool reversing = false;
-  bool final_reversal_done = false;
-  bool final_correction_done = false;
-  bool pullout_arrested = false;
-  bool saturated = false;
 };
 
 /// Navigation-derived state relative to the rotating Earth (what guidance works with).

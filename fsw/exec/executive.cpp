@@ -359,9 +359,6 @@ CycleOutput Executive::finish_cycle(const NavInput& nav, CycleOutput& out, std::
     out.sigma_rad = law.sigma_rad;
     out.phase = law.phase;
   }
-  out.drag_ref_mps2 = law.drag_ref_mps2;
-  out.drag_err_mps2 = law.drag_err_mps2;
-  out.heading_err_rad = law.heading_err_rad;
   out.tracker = law.tracker;
   if (law_status == Status::kOk && std::isfinite(law.lift_over_drag_scale) && law.lift_over_drag_scale > 0.0) {
     lift_over_drag_scale_ = law.lift_over_drag_scale;
@@ -389,8 +386,8 @@ CycleOutput Executive::finish_cycle(const NavInput& nav, CycleOutput& out, std::
       replan_after_reversal_ = false;
     } else if (s.t_s - last_request_t_s_ >= cfg_.replan_period_s - 1e-9) {
       want = true;
-    } else if (has_profile_ && law.drag_ref_mps2 > 0.0 &&
-               std::fabs(law.drag_err_mps2) > cfg_.replan_drag_error_frac * law.drag_ref_mps2 &&
+    } else if (has_profile_ && law.tracker.drag_ref_mps2 > 0.0 &&
+               std::fabs(law.tracker.drag_err_mps2) > cfg_.replan_drag_error_frac * law.tracker.drag_ref_mps2 &&
                s.t_s - last_request_t_s_ >= cfg_.drag_error_replan_spacing_s) {
       want = true;
     }

@@ -76,11 +76,10 @@ struct LawOutput {
   double alpha_rad = 0.0;
   double sigma_rad = 0.0;
   Phase phase = Phase::kInitialDescent;
-  double drag_ref_mps2 = 0.0;
-  double drag_err_mps2 = 0.0;
-  double heading_err_rad = 0.0;
   double lift_over_drag_scale = 1.0;  // in-flight L/D estimate over the model's, for the planner
-  TrackerTelemetry tracker;           // the law's internal state (telemetry only)
+  // The law's state (the fields of tracker_status_t, generated from its .lcm file), passed on
+  // whole; its drag reference and error also schedule the drag-error replans.
+  TrackerTelemetry tracker;
 };
 
 class CommandLaw {
@@ -120,13 +119,10 @@ struct CycleOutput {
   Phase phase = Phase::kInitialDescent;
   int plan_seq = 0;
   std::int32_t health_flags = 0;
-  double drag_ref_mps2 = 0.0;    // the tracker's drag reference (at the reference alpha)
-  double drag_err_mps2 = 0.0;    // sensed drag referred to the reference alpha, minus the reference
-  double heading_err_rad = 0.0;
   bool plan_adopted = false;     // a plan was adopted in this cycle
   bool awaiting_plan = false;    // lockstep: the plan due at this tick is late; call resume()
   NavVerdict nav_verdict = NavVerdict::kAccepted;
-  TrackerTelemetry tracker;      // the law's internal state this cycle (telemetry only)
+  TrackerTelemetry tracker;      // the law's state this cycle (LawOutput::tracker), for telemetry
 };
 
 struct ExecCounters {

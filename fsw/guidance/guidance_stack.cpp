@@ -29,9 +29,6 @@ void filtered_output(const LawCommand& c, bool& started, RateFilter& alpha, Rate
   out.alpha_rad = alpha.step(c.alpha_rad);
   out.sigma_rad = sigma.step(c.sigma_rad);
   out.phase = c.phase;
-  out.drag_ref_mps2 = c.drag_ref_mps2;
-  out.drag_err_mps2 = c.drag_err_mps2;
-  out.heading_err_rad = c.heading_err_rad;
   out.lift_over_drag_scale = c.lift_over_drag_scale;
   out.tracker = c.telemetry;
 }

@@ -38,6 +38,7 @@
 #include "dynamics/simulator.hpp"
 #include "evaluation/mission_verdict.hpp"
 #include "reentry/config/mission.hpp"
+#include "sim_messages.hpp"
 
 namespace {
 
@@ -103,18 +104,6 @@ void on_datagram(const reentry::transport::Datagram& d, CmdState& st, reentry::t
   st.latest = st.msg;
   st.have_latest = true;
 }
-
-std::int8_t event_code(reentry::truth::SimEvent e) {
-  using reentry::truth::SimEvent;
-  switch (e) {
-    case SimEvent::kTaemEnergy: return reentry::run_control_t::EVENT_TAEM;
-    case SimEvent::kGroundImpact: return reentry::run_control_t::EVENT_GROUND;
-    case SimEvent::kSkipOut: return reentry::run_control_t::EVENT_SKIP_OUT;
-    case SimEvent::kTimeOut: return reentry::run_control_t::EVENT_TIMEOUT;
-    default: return reentry::run_control_t::EVENT_ABORT;
-  }
-}
-
 
 }  // namespace
 
@@ -216,37 +205,8 @@ int main(int argc, char** argv) {
   for (;; ++k) {
     const auto ns = sim->nav_sample();
     const auto ts = sim->sample();
-    nav.utime = std::llround(ns.t_s * 1e6);
-    nav.tick = k;
-    nav.t_s = ns.t_s;
-    for (int i = 0; i < 3; ++i) {
-      nav.position_I_m[i] = ns.r_I_m[i];
-      nav.velocity_I_mps[i] = ns.v_I_mps[i];
-      nav.aero_accel_I_mps2[i] = ns.aero_accel_I_mps2[i];
-    }
-    nav.earth_rotation_angle_rad = ns.earth_rotation_angle_rad;
-    nav.sim_flags = 0;
-    tel.utime = nav.utime;
-    tel.tick = k;
-    tel.t_s = ts.t_s;
-    tel.altitude_m = ts.h_m;
-    tel.latitude_rad = ts.lat_rad;
-    tel.longitude_rad = ts.lon_rad;
-    tel.velocity_mps = ts.V_mps;
-    tel.gamma_rad = ts.gamma_rad;
-    tel.heading_rad = ts.chi_rad;
-    tel.mach = ts.mach;
-    tel.q_Pa = ts.q_Pa;
-    tel.heat_flux_Wpm2 = ts.qdot_Wpm2;
-    tel.heat_load_Jpm2 = ts.Q_Jpm2;
-    tel.load_factor_g = ts.n_g;
-    tel.drag_mps2 = ts.D_mps2;
-    tel.lift_mps2 = ts.L_mps2;
-    tel.energy_Jpkg = ts.E_Jpkg;
-    tel.alpha_rad = ts.alpha_rad;
-    tel.sigma_rad = ts.sigma_rad;
-    tel.range_to_taem_m = ts.range_to_taem_m;
-    tel.heading_to_taem_rad = ts.heading_to_taem_rad;
+    reentry::truth::fill_nav(ns, k, nav);
+    reentry::truth::fill_truth(ts, nav.utime, k, tel);
     int n = encode_into(tel, buf.data(), static_cast<int>(buf.size()));
     const bool last_tick = sim->finished();
     if (n > 0 && (k % truth_every == 0 || last_tick)) publish("TRUTH", buf.data(), n);
@@ -332,25 +292,9 @@ int main(int argc, char** argv) {
   const auto summary = sim->summary();
   const auto& f = summary.final_state;
   reentry::run_control_t rc{};
-  rc.utime = std::llround(f.t_s * 1e6);
-  rc.tick = k;
-  rc.command = reentry::run_control_t::END_OF_RUN;
-  rc.event = exit_code == kExitOk ? event_code(summary.event) : reentry::run_control_t::EVENT_LINK_LOSS;
-  rc.final_altitude_m = f.h_m;
-  rc.final_velocity_mps = f.V_mps;
-  rc.final_mach = f.mach;
-  rc.final_gamma_rad = f.gamma_rad;
-  rc.final_heading_rad = f.chi_rad;
-  rc.final_latitude_rad = f.lat_rad;
-  rc.final_longitude_rad = f.lon_rad;
-  rc.taem_miss_m = f.range_to_taem_m;
-  rc.heading_err_rad = reentry::truth::wrap_pi(f.chi_rad - mission.taem.heading_rad);
-  rc.max_heat_flux_Wpm2 = summary.maxima.qdot_Wpm2;
-  rc.heat_load_Jpm2 = f.Q_Jpm2;
-  rc.max_load_factor_g = summary.maxima.n_g;
-  rc.max_q_Pa = summary.maxima.q_Pa;
-  rc.max_q_alpha_Pa_rad = summary.maxima.q_alpha_Pa_rad;
-  rc.flight_time_s = f.t_s;
+  reentry::truth::fill_end_of_run(
+      summary, k, exit_code == kExitOk ? reentry::truth::end_event_code(summary.event) : reentry::run_control_t::EVENT_LINK_LOSS,
+      mission.taem.heading_rad, rc);
   const int n = encode_into(rc, buf.data(), static_cast<int>(buf.size()));
   for (int i = 0; i < 3 && n > 0; ++i) publish("RUN_CONTROL", buf.data(), n);
   log.close();

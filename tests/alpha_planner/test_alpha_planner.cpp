@@ -244,7 +244,6 @@ TEST(AlphaPlannerParams, RangingPercentageOrdersTheProfile) {
   EXPECT_GT(high.corridor[mid].h_path_m, low.corridor[mid].h_path_m);
 }
 
-#ifdef REENTRY_HAVE_CONFIG_LOADER
 config::Mission load(const std::string& name) {
   const config::LoadResult r = config::load_mission(name);
   EXPECT_TRUE(r.ok) << r.error;
@@ -347,7 +346,6 @@ TEST(AlphaPlannerMissions, TableAtmosphereHeightsSatisfyTheConstraintEquations) 
   ASSERT_EQ(planner->plan(AlphaPlanParams{}, r), Status::kOk);
   check_plan_invariants(*planner, r, m.constraints.alpha_max_rad);
 }
-#endif
 
 }  // namespace
 }  // namespace reentry::fsw

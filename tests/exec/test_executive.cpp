@@ -68,8 +68,8 @@ class EchoLaw : public CommandLaw {
     }
     out.sigma_rad = profile.sigma_rad[0] + 1e-9 * s.energy_Jpkg;
     out.phase = Phase::kTracking;
-    out.drag_ref_mps2 = profile.drag_mps2[0];
-    out.drag_err_mps2 = s.drag_mps2 - out.drag_ref_mps2;
+    out.tracker.drag_ref_mps2 = profile.drag_mps2[0];
+    out.tracker.drag_err_mps2 = s.drag_mps2 - out.tracker.drag_ref_mps2;
     return Status::kOk;
   }
 };

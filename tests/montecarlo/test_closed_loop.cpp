@@ -75,7 +75,7 @@ TEST(ClosedLoop, GuidanceAndTruthAgreeOnTheTaemEnergy) {
 TEST(ClosedLoop, X33NominalReachesTaemWithinEveryTolerance) {
   const tools::ClosedLoopResult r = fly_nominal_within_tolerances(load("x33"));
   // In-flight replans may fail (the executive keeps the active plan); most must succeed.
-  EXPECT_GT(r.plans_adopted, 3 * r.planner_failures);
+  EXPECT_GT(r.counters.plans_adopted, 3 * r.counters.planner_failures);
 }
 
 TEST(ClosedLoop, HorusNominalReachesTaemWithinEveryTolerance) {
@@ -174,7 +174,7 @@ TEST(PlannedAlpha, X33NominalReachesTaemWithinEveryToleranceWithThePlannedProfil
   // the mission is judged like the hand-profile X-33: every constraint and TAEM tolerance,
   // the altitude included (the step of the profile before the ramp left it 2.6 km high).
   const tools::ClosedLoopResult r = fly_nominal_within_tolerances(load("x33_planned_alpha"));
-  EXPECT_GE(r.plans_adopted, 2);
+  EXPECT_GE(r.counters.plans_adopted, 2);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
-// Reference missions for the planner tests. Prefer the mission files (config/missions) via
-// the loader; when the loader or the files are not available, build the Mission from the
-// DESIGN §7 reading of thesis tables 3.1/3.3 with the public Orbiter aero tables
-// (config/aero/STS_*.dat) as the documented stand-in aero model.
+// Thesis-geometry missions for the planner tests: HORUS and X-33 built from the DESIGN §7
+// reading of thesis tables 3.1/3.3 with the public Orbiter aero tables (config/aero/STS_*.dat)
+// as the documented stand-in aero model. The tests fly them beside the mission files
+// (config/missions): the same geometry with a second aero model and the three-segment profile.
 #pragma once
 
 #include <cmath>

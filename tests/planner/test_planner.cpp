@@ -19,9 +19,7 @@
 #include "planner/mission_geometry.hpp"
 #include "reference_missions.hpp"
 
-#ifdef REENTRY_HAVE_CONFIG_LOADER
 #include <reentry/config/mission.hpp>
-#endif
 
 using namespace reentry;
 using namespace reentry::fsw;
@@ -46,13 +44,11 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
-// Mission from the mission file when the loader and file exist, else the documented fallback.
-config::Mission load_or_fallback(const std::string& name) {
-#ifdef REENTRY_HAVE_CONFIG_LOADER
+// Mission from its mission file (config/missions); a load failure fails the test.
+config::Mission load(const std::string& name) {
   config::LoadResult r = config::load_mission(name);
-  if (r.ok) return r.mission;
-#endif
-  return name == "horus" ? planner_test::horus_fallback() : planner_test::x33_fallback();
+  EXPECT_TRUE(r.ok) << name << ": " << r.error;
+  return r.mission;
 }
 
 double radius_of(double altitude_m) { return kEarthRadius_m + altitude_m; }
@@ -160,7 +156,7 @@ TEST(OnboardModels, DragCoefficientEnergySlope) {
 
 // ---------------------------------------------------------------- geometry (thesis §7, DESIGN §7)
 TEST(MissionGeometry, HorusAndX33MatchThesis) {
-  const config::Mission horus = load_or_fallback("horus");
+  const config::Mission horus = load("horus");
   const GreatCircle gh = great_circle(horus.entry.latitude_rad, horus.entry.longitude_rad, horus.taem.latitude_rad,
                                       horus.taem.longitude_rad);
   EXPECT_NEAR(gh.arc_rad / kDeg, 57.8, 0.1);
@@ -173,7 +169,7 @@ TEST(MissionGeometry, HorusAndX33MatchThesis) {
   const double s0_horus = gh.arc_rad * 0.5 * (radius_of(horus.entry.altitude_m) + radius_of(horus.taem.altitude_m));
   EXPECT_NEAR(s0_horus / 1e3, 6506.0, 6506.0 * 0.005);
 
-  const config::Mission x33 = load_or_fallback("x33");
+  const config::Mission x33 = load("x33");
   const GreatCircle gx = great_circle(x33.entry.latitude_rad, x33.entry.longitude_rad, x33.taem.latitude_rad,
                                       x33.taem.longitude_rad);
   EXPECT_NEAR(wrap_pi(x33.entry.heading_rad - gx.azimuth_rad) / kDeg, 1.94, 0.05);
@@ -429,7 +425,7 @@ void expect_converged(const CaseResult& r) {
 // mission file (modelled HORUS aero, 43 deg alpha at high energy), and with the thesis
 // geometry on the public Orbiter tables as stand-in aero.
 TEST(EntryPlanner, HorusCase4LminThreeSegmentConverges) {
-  const CaseResult r = run_case(load_or_fallback("horus"), "three_segment", "lmin");
+  const CaseResult r = run_case(load("horus"), "three_segment", "lmin");
   expect_converged(r);
   EXPECT_NEAR(r.diag.s_final_m / 1e3, 6677.0, 0.05 * 6677.0);
   expect_converged(run_case(planner_test::horus_fallback(), "three_segment", "lmin"));
@@ -437,7 +433,7 @@ TEST(EntryPlanner, HorusCase4LminThreeSegmentConverges) {
 
 TEST(EntryPlanner, HorusMissionFileDefaultsConverge) {
   // Mission defaults (smooth profile from the actual drag), whatever aero the file carries.
-  const config::Mission m = load_or_fallback("horus");
+  const config::Mission m = load("horus");
   expect_converged(run_case(m, m.guidance.drag_profile.c_str(), m.guidance.initial_drag.c_str()));
 }
 
@@ -452,16 +448,16 @@ TEST(EntryPlanner, HalvedLimitsAreReportedNotOk) {
 }
 
 TEST(EntryPlanner, X33Case1ActualThreeSegmentConverges) {
-  expect_converged(run_case(load_or_fallback("x33"), "three_segment", "actual"));
+  expect_converged(run_case(load("x33"), "three_segment", "actual"));
 }
 
 TEST(EntryPlanner, SmoothProfileConverges) {
   expect_converged(run_case(planner_test::horus_fallback(), "smooth", "lmin"));
-  expect_converged(run_case(load_or_fallback("x33"), "smooth", "actual"));
+  expect_converged(run_case(load("x33"), "smooth", "actual"));
 }
 
 TEST(EntryPlanner, MidFlightPlanFromHalfEnergy) {
-  config::Mission m = load_or_fallback("x33");
+  config::Mission m = load("x33");
   m.guidance.drag_profile = "smooth";
   m.guidance.initial_drag = "actual";
   auto planner = std::make_unique<EntryPlanner>();
@@ -493,7 +489,7 @@ TEST(EntryPlanner, MidFlightPlanFromHalfEnergy) {
 }
 
 TEST(EntryPlanner, ImpossibleGeometryReportsNoBracket) {
-  config::Mission m = load_or_fallback("horus");
+  config::Mission m = load("horus");
   m.guidance.drag_profile = "three_segment";
   m.guidance.initial_drag = "lmin";
   m.entry.heading_rad += 70.0 * kDeg;  // aim point far to the left of anything reachable
@@ -513,7 +509,7 @@ TEST(EntryPlanner, RejectsInvalidInput) {
   auto out = std::make_unique<ReferenceProfile>();
   RelativeState s;
   EXPECT_EQ(planner->plan(s, *out), Status::kInvalidInput);  // not initialised
-  config::Mission m = load_or_fallback("x33");
+  config::Mission m = load("x33");
   ASSERT_EQ(init_from_mission(*planner, m), Status::kOk);
   s = planner->entry_state();
   s.latitude_rad = std::nan("");
@@ -528,7 +524,7 @@ TEST(EntryPlanner, RejectsInvalidInput) {
 }
 
 TEST(EntryPlanner, PlanDoesNotAllocate) {
-  config::Mission m = load_or_fallback("x33");
+  config::Mission m = load("x33");
   m.guidance.drag_profile = "smooth";
   auto planner = std::make_unique<EntryPlanner>();
   auto out = std::make_unique<ReferenceProfile>();
@@ -542,7 +538,7 @@ TEST(EntryPlanner, PlanDoesNotAllocate) {
 }
 
 TEST(EntryPlanner, TabulatedAtmosphereOptionConverges) {
-  config::Mission m = load_or_fallback("x33");
+  config::Mission m = load("x33");
   m.guidance.onboard_atmosphere = "table";
   m.environment.us76_table = REENTRY_CONFIG_DIR_STR "/environment/us76.dat";
   auto planner = std::make_unique<EntryPlanner>();
@@ -552,7 +548,7 @@ TEST(EntryPlanner, TabulatedAtmosphereOptionConverges) {
 }
 
 TEST(EntryPlanner, ClosedCorridorIsReported) {
-  config::Mission m = load_or_fallback("horus");
+  config::Mission m = load("horus");
   m.constraints.heat_flux_max_Wpm2 = 1e3;  // 1 kW/m^2: maximum drag below Lmin nearly everywhere
   auto planner = std::make_unique<EntryPlanner>();
   auto out = std::make_unique<ReferenceProfile>();
@@ -562,7 +558,6 @@ TEST(EntryPlanner, ClosedCorridorIsReported) {
   EXPECT_GT(planner->diagnostics().corridor_closed_points, EntryPlanner::kGrid / 10);
 }
 
-#ifdef REENTRY_HAVE_CONFIG_LOADER
 TEST(EntryPlanner, CorridorFloorCarriesTheEarthRateTerm) {
   // Closure floor: Lmin (7.7) with the Earth-rate term of (2.45). For the same vehicle and
   // energy grid the floor of an eastbound mission lies below that of the mirrored westbound one by
@@ -695,4 +690,3 @@ TEST(EntryPlanner, LowLiftLongRangeMovesAlphaToTurn) {
   EXPECT_GT(r.diag.ranging_blend, 0.0);
   EXPECT_FALSE(r.diag.reversal_best_effort);
 }
-#endif

@@ -594,16 +594,10 @@ TEST(OpenLoop, WingsLevelPulloutBoundsEveryBankedDescent) {
 TEST(Performance, FullOpenLoopEntryReport) {
   // Reported, not asserted (timing belongs in benchmarks): a full open-loop entry (alpha 40 deg,
   // sigma 60 deg, 10 Hz command ticks) at rel tol 1e-10, with the simple models and with the
-  // full ones (J2-J4, US76, oblate Earth, wind). Uses the real X-33 mission file when the loader
-  // provides it, the test mission otherwise.
-#ifdef REENTRY_HAVE_MISSION_LOADER
+  // full ones (J2-J4, US76, oblate Earth, wind), on the X-33 mission file.
   config::LoadResult loaded = config::load_mission(std::string(REENTRY_CONFIG_DIR) + "/missions/x33.toml");
-  const bool real = loaded.ok;
-#else
-  config::LoadResult loaded;
-  const bool real = false;
-#endif
-  const config::Mission m = real ? loaded.mission : truth_test::x33_test_mission();
+  ASSERT_TRUE(loaded.ok) << loaded.error;
+  const config::Mission& m = loaded.mission;
   for (int full = 0; full < 2; ++full) {
     SimOverrides ov = simple_models();
     if (full) {
@@ -624,7 +618,7 @@ TEST(Performance, FullOpenLoopEntryReport) {
     const RunSummary r = run_open_loop(*sim, p, 0.0, nullptr);
     std::printf("[ perf ] %s (%s, %s, %s, wind %d, trim %d): event %s at t = %.1f s, wall %.4f s, %lld derivative evaluations, "
                 "%lld/%lld steps\n",
-                real ? "x33.toml" : "x33 test mission", sim->settings().gravity.c_str(), sim->settings().atmosphere.c_str(),
+                "x33.toml", sim->settings().gravity.c_str(), sim->settings().atmosphere.c_str(),
                 sim->settings().shape.c_str(), sim->settings().wind ? 1 : 0, sim->settings().trim ? 1 : 0, to_string(r.event),
                 r.final_state.t_s, r.wall_s, static_cast<long long>(r.derivative_evaluations),
                 static_cast<long long>(r.steps_accepted), static_cast<long long>(r.steps_rejected));

@@ -11,13 +11,10 @@
 #include <string>
 #include <vector>
 
+#include <reentry/config/mission.hpp>
+
 #include "guidance/mission_adapter.hpp"
 #include "planner/entry_planner.hpp"
-#include "reference_missions.hpp"
-
-#ifdef REENTRY_HAVE_CONFIG_LOADER
-#include <reentry/config/mission.hpp>
-#endif
 
 namespace {
 
@@ -26,15 +23,11 @@ using reentry::fsw::ReferenceProfile;
 using reentry::fsw::RelativeState;
 using reentry::fsw::Status;
 
+// The mission file's mission; a failed load leaves an empty mission that init_from_mission
+// rejects, and the case is skipped with an error.
 reentry::config::Mission mission(const std::string& name, const char* profile, const char* initial_drag,
                                  bool onboard_trim = true) {
-  reentry::config::Mission m;
-  bool loaded = false;
-#ifdef REENTRY_HAVE_CONFIG_LOADER
-  reentry::config::LoadResult r = reentry::config::load_mission(name);
-  if (r.ok) { m = r.mission; loaded = true; }
-#endif
-  if (!loaded) m = name == "horus" ? reentry::planner_test::horus_fallback() : reentry::planner_test::x33_fallback();
+  reentry::config::Mission m = reentry::config::load_mission(name).mission;
   m.guidance.drag_profile = profile;
   m.guidance.initial_drag = initial_drag;
   m.guidance.onboard_trim = onboard_trim;
@@ -117,7 +110,7 @@ void run(benchmark::State& state, const std::string& name, const char* profile, 
 void BM_OnboardTrimSolve_Horus(benchmark::State& state) {
   const reentry::config::Mission m = mission("horus", "smooth", "actual");
   if (m.vehicle.aero.cm.empty()) {
-    state.SkipWithError("no HORUS moment data (config loader missing)");
+    state.SkipWithError("no HORUS moment data (mission file not loaded)");
     return;
   }
   auto aero = std::make_unique<reentry::fsw::OnboardAero>();

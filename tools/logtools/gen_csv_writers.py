@@ -14,135 +14,95 @@ main row.  Larger fixed arrays of one common length go to a long-format table
 (one row per element index) keyed by the scalar fields utime, tick and seq;
 when the struct has a scalar `n_points`, only indices < n_points are written.
 """
-import re
+import os
 import sys
 
-SMALL_ARRAY_MAX = 16
-PRIMITIVES = {"int8_t", "int16_t", "int32_t", "int64_t", "byte", "float",
-              "double", "boolean", "string"}
-POINT_KEYS = ("utime", "tick", "seq")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from lcm_schema import (PRIMITIVES, SMALL_ARRAY_MAX, SchemaError, csv_columns, csv_point_columns,  # noqa: E402
+                        parse_all, point_fields, point_keys)
 
 
-def strip_comments(text):
-    text = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
-    return re.sub(r"//[^\n]*", "", text)
-
-
-def parse_lcm(path):
-    text = strip_comments(open(path, encoding="utf-8").read())
-    pkg = re.search(r"\bpackage\s+([\w.]+)\s*;", text)
-    package = pkg.group(1) if pkg else ""
-    structs = []
-    for m in re.finditer(r"\bstruct\s+(\w+)\s*\{(.*?)\}", text, flags=re.S):
-        name, body = m.group(1), m.group(2)
-        consts, fields = {}, []
-        for stmt in body.split(";"):
-            stmt = " ".join(stmt.split())
-            if not stmt:
-                continue
-            if stmt.startswith("const "):
-                for part in stmt[len("const "):].split(","):
-                    cm = re.match(r"(?:\w+\s+)?(\w+)\s*=\s*(\S+)", part.strip())
-                    if cm:
-                        consts[cm.group(1)] = cm.group(2)
-                continue
-            fm = re.match(r"([\w.]+)\s+(\w+)\s*((?:\[\s*\w+\s*\])*)$", stmt)
-            if not fm:
-                sys.exit(f"{path}: cannot parse field '{stmt}'")
-            ftype, fname, dims_txt = fm.groups()
-            if ftype not in PRIMITIVES:
-                sys.exit(f"{path}: field '{fname}' has non-primitive type '{ftype}' "
-                         "(nested types are not supported by the CSV writer)")
-            dims = []
-            for d in re.findall(r"\[\s*(\w+)\s*\]", dims_txt):
-                if d.isdigit():
-                    dims.append(int(d))
-                elif d in consts and consts[d].isdigit():
-                    dims.append(int(consts[d]))
-                else:
-                    sys.exit(f"{path}: field '{fname}' has variable length [{d}]; "
-                             "only fixed-size arrays are supported")
-            if len(dims) > 1:
-                sys.exit(f"{path}: field '{fname}' is multi-dimensional (unsupported)")
-            fields.append((ftype, fname, dims[0] if dims else 0))
-        structs.append((package, name, fields))
+def load(paths):
+    """Every struct of the .lcm files; primitive fields only."""
+    structs = parse_all(paths)
+    for st in structs:
+        for f in st.fields:
+            if f.type not in PRIMITIVES:
+                raise SchemaError(f"{st.path}: field '{f.name}' has non-primitive type '{f.type}' "
+                                  "(nested types are not supported by the CSV writer)")
+        point_fields(st)  # one length of long arrays
     return structs
 
 
-def cpp_name(package, name):
-    return "::".join(package.split(".") + [name]) if package else name
+def emit_rows(st, w):
+    t = st.cpp_name
+    w(f"// ---- {t}\n")
+    w(f"inline void csv_header(std::string& out, const {t}*) {{\n")
+    w(f'  out += "{",".join(csv_columns(st))}\\n";\n}}\n')
+    w(f"inline void csv_row(std::string& out, const {t}& m) {{\n")
+    first = True
+    for f in st.fields:
+        if f.length > SMALL_ARRAY_MAX:
+            continue
+        for s in [""] if f.length == 0 else [f"[{i}]" for i in range(f.length)]:
+            if not first:
+                w("  out += ',';\n")
+            first = False
+            w(f"  csv_put(out, m.{f.name}{s});\n")
+    w("  out += '\\n';\n}\n")
+
+
+def emit_points(st, w):
+    t, large = st.cpp_name, point_fields(st)
+    w(f"inline bool has_points(const {t}*) {{ return {'true' if large else 'false'}; }}\n")
+    w(f"inline void csv_points_header(std::string& out, const {t}*) {{\n")
+    w(f'  out += "{",".join(csv_point_columns(st))}\\n";\n}}\n')
+    w(f"inline long csv_points_rows(std::string& out, const {t}& m) {{\n")
+    if not large:
+        w("  (void)out;\n  (void)m;\n  return 0;\n}\n")
+        return
+    n = large[0].length
+    if any(f.name == "n_points" and f.length == 0 for f in st.fields):
+        w(f"  long n = static_cast<long>(m.n_points);\n  if (n < 0) n = 0;\n  if (n > {n}) n = {n};\n")
+    else:
+        w(f"  const long n = {n};\n")
+    w("  for (long i = 0; i < n; ++i) {\n")
+    for k in point_keys(st):
+        w(f"    csv_put(out, m.{k});\n    out += ',';\n")
+    w("    csv_put(out, static_cast<int64_t>(i));\n")
+    for f in large:
+        w(f"    out += ',';\n    csv_put(out, m.{f.name}[i]);\n")
+    w("    out += '\\n';\n  }\n  return n;\n}\n")
 
 
 def emit(structs, out):
     w = out.write
     w("// Generated by tools/logtools/gen_csv_writers.py from interfaces/*.lcm. Do not edit.\n")
     w("#pragma once\n#include <cstdint>\n#include <string>\n\n")
-    for package, name, _ in structs:
-        w(f"#include <{package.replace('.', '/')}/{name}.hpp>\n" if package else f"#include <{name}.hpp>\n")
+    for st in structs:
+        w(f"#include <{st.package.replace('.', '/')}/{st.name}.hpp>\n" if st.package else f"#include <{st.name}.hpp>\n")
     w('#include "csv_format.hpp"\n\nnamespace reentry::logtools {\n\n')
-    for package, name, fields in structs:
-        t = cpp_name(package, name)
-        small = [f for f in fields if f[2] <= SMALL_ARRAY_MAX]
-        large = [f for f in fields if f[2] > SMALL_ARRAY_MAX]
-        lengths = {f[2] for f in large}
-        if len(lengths) > 1:
-            sys.exit(f"{name}: large arrays of different lengths {sorted(lengths)} are unsupported")
-        scalars = {f[1]: f for f in fields if f[2] == 0}
-        # header
-        cols = []
-        for ftype, fname, n in small:
-            cols += [fname] if n == 0 else [f"{fname}_{i}" for i in range(n)]
-        w(f"// ---- {t}\n")
-        w(f"inline void csv_header(std::string& out, const {t}*) {{\n")
-        w(f'  out += "{",".join(cols)}\\n";\n}}\n')
-        w(f"inline void csv_row(std::string& out, const {t}& m) {{\n")
-        first = True
-        for ftype, fname, n in small:
-            idx = [""] if n == 0 else [f"[{i}]" for i in range(n)]
-            for s in idx:
-                if not first:
-                    w("  out += ',';\n")
-                first = False
-                w(f"  csv_put(out, m.{fname}{s});\n")
-        w("  out += '\\n';\n}\n")
-        w(f"inline bool has_points(const {t}*) {{ return {'true' if large else 'false'}; }}\n")
-        keys = [k for k in POINT_KEYS if k in scalars]
-        pcols = keys + ["i"] + [f[1] for f in large]
-        w(f"inline void csv_points_header(std::string& out, const {t}*) {{\n")
-        w(f'  out += "{",".join(pcols) if large else ""}\\n";\n}}\n')
-        w(f"inline long csv_points_rows(std::string& out, const {t}& m) {{\n")
-        if large:
-            n = lengths.pop()
-            if "n_points" in scalars:
-                w(f"  long n = static_cast<long>(m.n_points);\n  if (n < 0) n = 0;\n  if (n > {n}) n = {n};\n")
-            else:
-                w(f"  const long n = {n};\n")
-            w("  for (long i = 0; i < n; ++i) {\n")
-            for k in keys:
-                w(f"    csv_put(out, m.{k});\n    out += ',';\n")
-            w("    csv_put(out, static_cast<int64_t>(i));\n")
-            for f in large:
-                w(f"    out += ',';\n    csv_put(out, m.{f[1]}[i]);\n")
-            w("    out += '\\n';\n  }\n  return n;\n}\n")
-        else:
-            w("  (void)out;\n  (void)m;\n  return 0;\n}\n")
-        if "utime" in scalars:
+    for st in structs:
+        emit_rows(st, w)
+        emit_points(st, w)
+        t = st.cpp_name
+        if any(f.name == "utime" and f.length == 0 for f in st.fields):
             w(f"inline bool message_utime(const {t}& m, int64_t* utime) {{ *utime = static_cast<int64_t>(m.utime); return true; }}\n\n")
         else:
             w(f"inline bool message_utime(const {t}&, int64_t*) {{ return false; }}\n\n")
     w("}  // namespace reentry::logtools\n\n")
     w("// X-macro over every generated type.\n#define REENTRY_LOG_TYPES(X) \\\n")
-    w(" \\\n".join(f"  X({cpp_name(p, n)})" for p, n, _ in structs))
+    w(" \\\n".join(f"  X({st.cpp_name})" for st in structs))
     w("\n")
 
 
 def main():
     if len(sys.argv) < 3:
         sys.exit("usage: gen_csv_writers.py OUT.hpp file.lcm...")
-    structs = []
-    for path in sorted(sys.argv[2:]):
-        structs += parse_lcm(path)
-    structs.sort(key=lambda s: s[1])
+    try:
+        structs = load(sys.argv[2:])
+    except SchemaError as e:
+        sys.exit(f"gen_csv_writers: {e}")
     with open(sys.argv[1], "w", encoding="utf-8") as out:
         emit(structs, out)
 

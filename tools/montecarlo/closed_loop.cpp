@@ -5,10 +5,15 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
+#include "app/guidance_messages.hpp"
 #include "dynamics/open_loop.hpp"
 #include "guidance/guidance_stack.hpp"
 #include "nav/relative_state.hpp"
+#include "sim_messages.hpp"
+#include "transport/event_log.hpp"
+#include "transport/lcm_codec.hpp"
 
 namespace reentry::tools {
 
@@ -25,6 +30,68 @@ std::unique_ptr<truth::Simulator> make_run_simulator(const config::Mission& miss
   if (!sim) *error = "simulator: " + *error;
   return sim;
 }
+
+/// The run once per second in the channels of a SIL run's log, each message filled by the
+/// functions the two processes use (generated from interfaces/*.lcm).
+class TraceLog {
+ public:
+  bool open(const std::string& path, int every_ticks) {
+    every_ = every_ticks;
+    std::string error;
+    if (log_.open(path, 1u << 20, transport::EventLogWriter::WhenFull::kWait, error)) return true;
+    std::fprintf(stderr, "closed_loop: no trace: %s\n", error.c_str());
+    return false;
+  }
+  bool is_open() const { return log_.is_open(); }
+  /// Tick k after its command (the simulator's state with the command in effect).
+  void record(std::int64_t k, const truth::Simulator& sim, const fsw::exec::CycleOutput& out,
+              const fsw::exec::Executive& exec) {
+    if (out.plan_adopted) {
+      fsw::app::fill_plan(exec.active_profile(), std::llround(out.t_s * 1e6), k, exec.counters().planner_ms_last, plan_);
+      put("PLAN", plan_);
+    }
+    if (k % every_ != 0) return;
+    const truth::TruthSample t = sim.sample();
+    truth::fill_truth(t, std::llround(t.t_s * 1e6), k, truth_);
+    put("TRUTH", truth_);
+    fsw::app::fill_command(out, cmd_);
+    put("GUIDANCE_CMD", cmd_);
+    fsw::app::fill_tracker_status(out, tracker_);
+    put("TRACKER_STATUS", tracker_);
+  }
+  void close(const truth::RunSummary& summary, std::int64_t k, double taem_heading_rad) {
+    truth::fill_end_of_run(summary, k, truth::end_event_code(summary.event), taem_heading_rad, end_);
+    put("RUN_CONTROL", end_);
+    log_.close();
+  }
+
+ private:
+  template <class Msg>
+  void put(const char* channel, const Msg& msg) {
+    const int n = transport::encode_into(msg, buf_.data(), static_cast<int>(buf_.size()));
+    if (n > 0) log_.record(channel, buf_.data(), n);
+  }
+  transport::EventLogWriter log_;
+  std::vector<std::uint8_t> buf_ = std::vector<std::uint8_t>(65000);
+  int every_ = 1;
+  truth_telemetry_t truth_{};
+  guidance_cmd_t cmd_{};
+  tracker_status_t tracker_{};
+  plan_t plan_{};
+  run_control_t end_{};
+};
+
+// The guidance's view of the run's vehicle: the drawn C_L, C_D and mass when it "knows" them
+// (a diagnosis; the truth scales the coefficients it looks up by these factors).
+config::Mission guidance_mission_of(const config::Mission& mission, const truth::DispersionDraw& d, bool knows) {
+  config::Mission m = mission;
+  if (!knows) return m;
+  config::Vehicle& v = m.vehicle;
+  v.mass_kg *= d.mass_scale;
+  for (double& c : v.aero.cl.values) c *= d.cl_scale;
+  for (double& c : v.aero.cd.values) c *= d.cd_scale;
+  return m;
+}
 }  // namespace
 
 PulloutBound wings_level_pullout_bound(const config::Mission& mission, std::uint64_t seed, bool dispersed) {
@@ -38,7 +105,7 @@ PulloutBound wings_level_pullout_bound(const config::Mission& mission, std::uint
 }
 
 ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t seed, bool dispersed,
-                                 const std::string& trace_csv, bool guidance_knows_vehicle,
+                                 const std::string& trace_log, bool guidance_knows_vehicle,
                                  const FlownSampleHandler& on_sample) {
   const auto t0 = std::chrono::steady_clock::now();
   ClosedLoopResult r;
@@ -46,16 +113,9 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
   r.dispersed = dispersed;
   auto sim = make_run_simulator(mission, seed, dispersed, &r.dispersion, &r.error);
   if (!sim) return r;
-  config::Mission guidance_mission = mission;
-  if (guidance_knows_vehicle) {
-    // The truth scales the coefficients it looks up (trimmed or not) by these factors.
-    config::Vehicle& v = guidance_mission.vehicle;
-    v.mass_kg *= r.dispersion.mass_scale;
-    for (double& c : v.aero.cl.values) c *= r.dispersion.cl_scale;
-    for (double& c : v.aero.cd.values) c *= r.dispersion.cd_scale;
-  }
   fsw::GuidanceStack stack;
-  const std::string err = stack.create(guidance_mission, fsw::exec::PlanMode::kSynchronous);
+  const std::string err =
+      stack.create(guidance_mission_of(mission, r.dispersion, guidance_knows_vehicle), fsw::exec::PlanMode::kSynchronous);
   if (!err.empty()) {
     r.error = "guidance: " + err;
     return r;
@@ -63,15 +123,11 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
   const double dt = 1.0 / mission.guidance.gnc_rate_hz;
   double alpha_prev = 0.0, sigma_prev = 0.0;
   bool have_prev = false;
-  std::FILE* trace = trace_csv.empty() ? nullptr : std::fopen(trace_csv.c_str(), "w");
-  if (trace) {
-    std::fprintf(trace,
-                 "t_s,h_km,V_mps,gamma_deg,chi_deg,lat_deg,lon_deg,range_to_taem_km,bearing_to_taem_deg,E_Jpkg,"
-                 "D_mps2,D_ref_mps2,alpha_cmd_deg,sigma_cmd_deg,heading_err_deg,qdot_kWpm2,q_kPa,n_g,mach,phase,plan_seq\n");
-  }
-  const int trace_every = std::max(1, static_cast<int>(std::lround(mission.guidance.gnc_rate_hz)));
+  TraceLog trace;
+  if (!trace_log.empty()) trace.open(trace_log, std::max(1, static_cast<int>(std::lround(mission.guidance.gnc_rate_hz))));
   const auto max_ticks = static_cast<std::int64_t>(std::ceil(sim->settings().time_limit_s / dt)) + 2;
-  for (std::int64_t k = 0; k < max_ticks && !sim->finished(); ++k) {
+  std::int64_t k = 0;
+  for (; k < max_ticks && !sim->finished(); ++k) {
     const truth::NavSample n = sim->nav_sample();
     const double r_I[3] = {n.r_I_m.x(), n.r_I_m.y(), n.r_I_m.z()};
     const double v_I[3] = {n.v_I_mps.x(), n.v_I_mps.y(), n.v_I_mps.z()};
@@ -90,30 +146,16 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
         have_prev = true;
         sim->set_command(out.alpha_rad, out.sigma_rad);
         if (on_sample) on_sample(*sim, out.alpha_rad, out.sigma_rad);
-        if (trace && k % trace_every == 0) {
-          const truth::TruthSample t = sim->sample();
-          constexpr double d = 180.0 / M_PI;
-          std::fprintf(trace, "%.1f,%.4f,%.2f,%.4f,%.3f,%.5f,%.5f,%.3f,%.3f,%.1f,%.4f,%.4f,%.3f,%.3f,%.3f,%.2f,%.3f,%.4f,%.3f,%d,%d\n",
-                       t.t_s, t.h_m * 1e-3, t.V_mps, t.gamma_rad * d, t.chi_rad * d, t.lat_rad * d, t.lon_rad * d,
-                       t.range_to_taem_m * 1e-3, t.heading_to_taem_rad * d, t.E_Jpkg, t.D_mps2,
-                       out.drag_ref_mps2, out.alpha_rad * d,
-                       out.sigma_rad * d, out.heading_err_rad * d, t.qdot_Wpm2 * 1e-3, t.q_Pa * 1e-3, t.n_g,
-                       t.mach, static_cast<int>(out.phase), static_cast<int>(out.plan_seq));
-        }
+        if (trace.is_open()) trace.record(k, *sim, out, *stack.executive);
       }
     }
     sim->advance_to(static_cast<double>(k + 1) * dt);
   }
-  if (trace) std::fclose(trace);
   if (on_sample) on_sample(*sim, alpha_prev, sigma_prev);
   r.summary = sim->summary();
+  if (trace.is_open()) trace.close(r.summary, k, mission.taem.heading_rad);
   r.verdict = truth::judge_mission(mission, r.summary, r.rates);
-  const auto& c = stack.executive->counters();
-  r.planner_runs = c.planner_runs;
-  r.plans_adopted = c.plans_adopted;
-  r.planner_failures = c.planner_failures;
-  r.planner_ms_max = c.planner_ms_max;
-  r.cycle_us_max = c.cycle_us_max;
+  r.counters = stack.executive->counters();
   stack.executive->shutdown();
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

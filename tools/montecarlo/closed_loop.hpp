@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "dynamics/simulator.hpp"
+#include "exec/executive.hpp"
 #include "evaluation/mission_verdict.hpp"
 #include "reentry/config/mission.hpp"
 
@@ -23,11 +24,7 @@ struct ClosedLoopResult {
   truth::MissionVerdict verdict;
   truth::CommandRateMaxima rates;
   truth::DispersionDraw dispersion;
-  int planner_runs = 0;
-  int plans_adopted = 0;
-  int planner_failures = 0;
-  double planner_ms_max = 0.0;
-  double cycle_us_max = 0.0;
+  fsw::exec::ExecCounters counters;     // the executive's at the end of the run
   double wall_s = 0.0;
 };
 
@@ -42,8 +39,9 @@ struct PulloutBound {
 PulloutBound wings_level_pullout_bound(const config::Mission& mission, std::uint64_t seed, bool dispersed);
 
 /// Flies the mission; dispersed runs draw their dispersions from `seed` (draw_dispersions).
-/// A non-empty `trace_csv` receives the truth state and the guidance command once per second
-/// (the trajectory sample of the run, for plots and diagnosis). With `guidance_knows_vehicle`
+/// A non-empty `trace_log` receives the run once per second as an LCM log of the SIL's channels
+/// (TRUTH, GUIDANCE_CMD, TRACKER_STATUS; PLAN at each adoption; RUN_CONTROL at the end), the
+/// same messages as a SIL run's log: tools/log2csv and tools/plot read it. With `guidance_knows_vehicle`
 /// the guidance is given the run's drawn C_L, C_D and mass (a diagnosis, not a flight mode:
 /// no sensor tells a C_D error from a density error; it measures what that ignorance costs).
 /// A non-empty `on_sample` sees the simulator at every tick right after the command (with the
@@ -51,7 +49,7 @@ PulloutBound wings_level_pullout_bound(const config::Mission& mission, std::uint
 /// the flown trajectory, e.g. to warm-start the trajectory optimizer.
 using FlownSampleHandler = std::function<void(const truth::Simulator& sim, double alpha_rad, double sigma_rad)>;
 ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t seed, bool dispersed,
-                                 const std::string& trace_csv = {}, bool guidance_knows_vehicle = false,
+                                 const std::string& trace_log = {}, bool guidance_knows_vehicle = false,
                                  const FlownSampleHandler& on_sample = {});
 
 }  // namespace reentry::tools

@@ -77,9 +77,9 @@ json run_record(int run, const ClosedLoopResult& r) {
   j["max_q_alpha_kPa_deg"] = m.q_alpha_Pa_rad * 1e-3 * kDeg;
   j["heat_load_MJ_m2"] = f.Q_Jpm2 * 1e-6;
   j["violations"] = r.verdict.violations;
-  j["planner_runs"] = r.planner_runs;
-  j["plans_adopted"] = r.plans_adopted;
-  j["planner_ms_max"] = r.planner_ms_max;
+  j["planner_runs"] = r.counters.planner_runs;
+  j["plans_adopted"] = r.counters.plans_adopted;
+  j["planner_ms_max"] = r.counters.planner_ms_max;
   j["wall_s"] = r.wall_s;
   j["dispersion"] = {{"entry_gamma_deg", d.entry_flight_path_rad * kDeg},
                      {"entry_heading_deg", d.entry_heading_rad * kDeg},
@@ -498,7 +498,7 @@ int main(int argc, char** argv) {
   app.add_option("--dispersions", dispersion_set,
                  "dispersion set: reference ([dispersions], Gaussian 3 sigma) or stress ([stress_dispersions])")
       ->check(CLI::IsMember({"reference", "stress"}));
-  app.add_flag("--trace", trace, "write each run's trajectory (1 Hz) to --out/traces/run_<seed>.csv");
+  app.add_flag("--trace", trace, "record each run (1 Hz, the SIL's channels) in --out/traces/run_<seed>.lcm");
   app.add_flag("--pullout-bound", pullout_bound,
                "also fly each run's entry descent wings level at alpha_max (the physics bound of the first pull-out)");
   app.add_flag("--guidance-knows-vehicle", knows_vehicle,
@@ -571,8 +571,8 @@ int main(int argc, char** argv) {
   // One run's record.
   auto compute = [&](std::size_t i) {
     const int r = mine[i];
-    const std::string trace_csv =
-        trace ? (fs::path(out) / "traces" / ("run_" + std::to_string(seed + r) + ".csv")).string() : std::string();
+    const std::string trace_log =
+        trace ? (fs::path(out) / "traces" / ("run_" + std::to_string(seed + r) + ".lcm")).string() : std::string();
     json rec;
     if (oracle) {
       reentry::optimal::OracleOptions oo;
@@ -587,7 +587,7 @@ int main(int argc, char** argv) {
       rec["feasible"] = o.feasible;
       rec["pullout_bound"] = pullout_record(o.pullout);
     } else {
-      const ClosedLoopResult res = reentry::tools::run_closed_loop(loaded.mission, seed + r, !nominal, trace_csv, knows_vehicle);
+      const ClosedLoopResult res = reentry::tools::run_closed_loop(loaded.mission, seed + r, !nominal, trace_log, knows_vehicle);
       rec = run_record(r, res);
     }
     rec["mission"] = loaded.mission.name;

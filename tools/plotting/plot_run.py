@@ -17,6 +17,7 @@ Optional summary.json keys used:
 """
 import argparse
 import csv
+import glob
 import json
 import math
 import os
@@ -30,6 +31,17 @@ import matplotlib.patches  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(REPO, "tools", "logtools"))
+# The columns come from the message definitions, as tools/log2csv's do.
+from lcm_schema import SchemaError, csv_columns, csv_point_columns, parse_all  # noqa: E402
+
+SCHEMA = {st.name: st for st in parse_all(glob.glob(os.path.join(REPO, "interfaces", "*.lcm")))}
+# The CSV tables plotted: channel (file name) -> its message type and table.
+CHANNELS = {"TRUTH": ("truth_telemetry_t", csv_columns),
+            "GUIDANCE_CMD": ("guidance_cmd_t", csv_columns),
+            "TRACKER_STATUS": ("tracker_status_t", csv_columns),
+            "PLAN_points": ("plan_t", csv_point_columns)}
 EARTH_RADIUS_M = 6378137.0
 MU_M3PS2 = 3.986004418e14
 RHO0_KGPM3 = 1.225
@@ -39,6 +51,31 @@ DPI = 120
 
 def warn(msg):
     print(f"plot_run: warning: {msg}", file=sys.stderr)
+
+
+class Columns(dict):
+    """A table's columns by name. A name that is no column of its message (interfaces/*.lcm) is
+    an error in this script (SchemaError); one the log lacks is a KeyError (the plot is skipped)."""
+
+    def __init__(self, cols, channel):
+        super().__init__(cols)
+        self.channel = channel
+
+    def __missing__(self, name):
+        type_name, table = CHANNELS[self.channel]
+        if name not in table(SCHEMA[type_name]):
+            raise SchemaError(f"{self.channel}: '{name}' is no column of {type_name} "
+                              f"(interfaces/{type_name}.lcm)")
+        raise KeyError(name)
+
+    def where(self, mask):
+        return Columns({k: v[mask] for k, v in self.items()}, self.channel)
+
+
+def read_channel(csv_dir, channel):
+    """The columns of one channel's CSV table (None if absent or empty)."""
+    cols = read_csv(os.path.join(csv_dir, channel + ".csv"))
+    return None if cols is None else Columns(cols, channel)
 
 
 def read_csv(path):
@@ -177,7 +214,7 @@ def plan_groups(points):
     out = []
     for s in sorted(set(points["seq"].astype(int))):
         m = points["seq"].astype(int) == s
-        out.append((s, {k: v[m] for k, v in points.items()}))
+        out.append((s, points.where(m)))
     return out
 
 
@@ -257,8 +294,18 @@ def plot_constraints(truth, summary, out_dir, made):
     save(fig, out_dir, "constraints_time.png", made)
 
 
-PHASE_NAMES = ["initial descent", "planned", "heading corridor", "terminal range", "final-reversal window"]
+def phase_names():
+    """Tracker phase names by value, from tracker_status_t's PHASE_* constants."""
+    consts = sorted(SCHEMA["tracker_status_t"].consts_of("phase"), key=lambda c: int(c.value))
+    return [c.comment or c.name[len("PHASE_"):].lower().replace("_", " ") for c in consts]
+
+
+PHASE_NAMES = phase_names()
 PHASE_COLORS = ["#eeeeee", "#dde8f5", "#e3f2dd", "#f8ecd6", "#f6dada"]
+
+
+def phase_color(k):
+    return PHASE_COLORS[k % len(PHASE_COLORS)]
 
 
 def shade_phases(ax, t, phase):
@@ -267,8 +314,7 @@ def shade_phases(ax, t, phase):
     start = 0
     for i in range(1, len(p) + 1):
         if i == len(p) or p[i] != p[start]:
-            k = min(max(p[start], 0), len(PHASE_COLORS) - 1)
-            ax.axvspan(t[start], t[i - 1], color=PHASE_COLORS[k], lw=0)
+            ax.axvspan(t[start], t[i - 1], color=phase_color(max(p[start], 0)), lw=0)
             start = i
 
 
@@ -301,7 +347,7 @@ def plot_tracker_status(tracker, summary, out_dir, made):
     tw.set_ylabel("terminal increment c [m/s²]")
     lines = ax.get_lines() + tw.get_lines()
     ax.legend(lines, [ln.get_label() for ln in lines], fontsize=8, loc="lower left")
-    handles = [matplotlib.patches.Patch(color=c, label=n) for c, n in zip(PHASE_COLORS, PHASE_NAMES)]
+    handles = [matplotlib.patches.Patch(color=phase_color(k), label=n) for k, n in enumerate(PHASE_NAMES)]
     axes[0].legend(handles=axes[0].get_legend_handles_labels()[0] + handles, fontsize=8, loc="upper left")
     save(fig, out_dir, "tracker_status.png", made)
 
@@ -337,10 +383,8 @@ def main():
             warn(f"cannot read {spath}: {exc}")
         if not isinstance(summary, dict):
             summary = {}
-    truth = read_csv(os.path.join(csv_dir, "TRUTH.csv"))
-    cmd = read_csv(os.path.join(csv_dir, "GUIDANCE_CMD.csv"))
-    points = read_csv(os.path.join(csv_dir, "PLAN_points.csv"))
-    tracker = read_csv(os.path.join(csv_dir, "TRACKER_STATUS.csv"))
+    truth, cmd, points, tracker = (read_channel(csv_dir, ch)
+                                   for ch in ("TRUTH", "GUIDANCE_CMD", "PLAN_points", "TRACKER_STATUS"))
     os.makedirs(out_dir, exist_ok=True)
     made = []
     jobs = [("ground_track", lambda: plot_ground_track(truth, summary, out_dir, made)),
@@ -374,4 +418,8 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except SchemaError as exc:  # a column this script asks for is not in the message definitions
+        print(f"plot_run: error: {exc}", file=sys.stderr)
+        sys.exit(3)

@@ -5,11 +5,36 @@
 #include "numerics/root_finding.hpp"
 
 namespace reentry::fsw {
+namespace {
+
+// Below |Db/Da - 1| of this, (C.9) is evaluated by its series (ln(1+x)/x to x^3).
+constexpr double kSegmentSeriesLimit = 1e-5;
+// Level solve (7.12): Brent in ln(Dc), resolution in ln(Dc), iteration bound, length tolerance.
+constexpr double kLevelLogTol = 1e-12;
+constexpr int kLevelIterations = 100;
+constexpr double kLevelLengthTol_m = 1e-6;
+
+// Dc such that profile.length_m() == s_m (7.12), in ln(Dc) for a well-scaled bracket.
+template <class Profile>
+Status solve_level_for_length(Profile& profile, double s_m, double dc_min, double dc_max) {
+  Profile trial = profile;
+  auto residual = [&](double log_dc) {
+    trial.d_c = std::exp(log_dc);
+    return s_m - trial.length_m();
+  };
+  const numerics::RootResult root =
+      numerics::brent(residual, std::log(dc_min), std::log(dc_max), kLevelLogTol, kLevelIterations, kLevelLengthTol_m);
+  if (root.status != numerics::NumStatus::kOk) return to_status(root.status);
+  profile.d_c = std::exp(root.x);
+  return profile.valid() ? Status::kOk : Status::kNonFinite;
+}
+
+}  // namespace
 
 double linear_segment_length(double delta_energy, double d_a, double d_b) {
   // int dE / (Da + (Db - Da) u) = dE ln(Db / Da) / (Db - Da)  (C.9)
   const double x = d_b / d_a - 1.0;
-  if (std::fabs(x) < 1e-5) return delta_energy / d_a * (1.0 - x / 2.0 + x * x / 3.0 - x * x * x / 4.0);
+  if (std::fabs(x) < kSegmentSeriesLimit) return delta_energy / d_a * (1.0 - x / 2.0 + x * x / 3.0 - x * x * x / 4.0);
   return delta_energy * std::log(d_b / d_a) / (d_b - d_a);
 }
 
@@ -36,15 +61,7 @@ double ThreeSegmentProfile::length_m() const {
 }
 
 Status ThreeSegmentProfile::solve_constant_drag(double s_m, double dc_min, double dc_max) {
-  ThreeSegmentProfile trial = *this;
-  auto residual = [&](double dc) {  // (7.12), in log(Dc) for a well-scaled bracket
-    trial.d_c = std::exp(dc);
-    return s_m - trial.length_m();
-  };
-  const numerics::RootResult root = numerics::brent(residual, std::log(dc_min), std::log(dc_max), 1e-12, 100, 1e-6);
-  if (root.status != numerics::NumStatus::kOk) return to_status(root.status);
-  d_c = std::exp(root.x);
-  return valid() ? Status::kOk : Status::kNonFinite;
+  return solve_level_for_length(*this, s_m, dc_min, dc_max);  // (7.12)
 }
 
 bool SmoothProfile::valid() const {
@@ -101,15 +118,7 @@ double SmoothProfile::length_m() const {
 }
 
 Status SmoothProfile::solve_level(double s_m, double dc_min, double dc_max) {
-  SmoothProfile trial = *this;
-  auto residual = [&](double log_dc) {
-    trial.d_c = std::exp(log_dc);
-    return s_m - trial.length_m();
-  };
-  const numerics::RootResult root = numerics::brent(residual, std::log(dc_min), std::log(dc_max), 1e-12, 100, 1e-6);
-  if (root.status != numerics::NumStatus::kOk) return to_status(root.status);
-  d_c = std::exp(root.x);
-  return valid() ? Status::kOk : Status::kNonFinite;
+  return solve_level_for_length(*this, s_m, dc_min, dc_max);
 }
 
 }  // namespace reentry::fsw

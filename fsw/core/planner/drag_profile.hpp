@@ -15,7 +15,8 @@ struct ThreeSegmentProfile {
 
   bool valid() const;
   double drag(double energy) const;
-  double slope(double energy) const;     // D' (0 on the constant segment), D'' = 0
+  double slope(double energy) const;     // D' (0 on the constant segment)
+  double curvature(double) const { return 0.0; }  // D'' = 0 on linear segments
   double length_m() const;               // (7.11)
   /// Dc such that length_m() == s_m (7.12), bracketed secant/Brent on [dc_min, dc_max].
   Status solve_constant_drag(double s_m, double dc_min, double dc_max);

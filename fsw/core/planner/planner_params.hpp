@@ -27,6 +27,12 @@ struct PlannerParams {
   double max_closed_fraction = 0.1;          // of the grid: a longer corridor closure is a failure
   double capture_span_fraction = 0.1;        // profile start (capture) exempt from the floor check
   double drag_floor_mps2 = 1e-4;             // least initial drag of a profile
+  // Breakpoints of the three-segment profile (7.11), as shares of the planning-to-TAEM energy
+  // span (§7.2: E1 at the heat-flux / q-alpha crossing, E2 at the highest Lmin below E1).
+  double e1_default_span_fraction = 0.3;     // E1 below the planning energy when the limits do not cross
+  double e1_min_span_fraction = 0.1;         // E1 at least this far above TAEM
+  double e2_default_span_fraction = 0.05;    // E2 above TAEM when Lmin has no maximum below E1
+  double segment_min_span_fraction = 0.02;   // least span of each of the three segments
   int taem_box_samples = 60;                 // altitude samples of the TAEM band (start-up)
   // Reversal search: no reversal nulls the crossrange -> smallest one, if below this share of
   // the mission angle b.
@@ -54,6 +60,13 @@ void visit_planner_params(Params& p, Visitor&& v) {
   v("capture_span_fraction", p.capture_span_fraction, U::kNone, 0.0, 1.0, "profile start exempt from the floor check");
   v("drag_floor_mps2", p.drag_floor_mps2, U::kNone, 1e-8, 1.0, "least initial drag");
   v("taem_box_samples", p.taem_box_samples, U::kNone, 1, 10000, "TAEM altitude-band samples");
+  v("e1_default_span_fraction", p.e1_default_span_fraction, U::kNone, 0.0, 1.0,
+    "E1 below the planning energy without a heat-flux / q-alpha crossing (share of the span)");
+  v("e1_min_span_fraction", p.e1_min_span_fraction, U::kNone, 0.0, 1.0, "E1 at least this share of the span above TAEM");
+  v("e2_default_span_fraction", p.e2_default_span_fraction, U::kNone, 0.0, 1.0,
+    "E2 above TAEM without an Lmin maximum below E1 (share of the span)");
+  v("segment_min_span_fraction", p.segment_min_span_fraction, U::kNone, 0.0, 0.3,
+    "least span of each three-segment piece (share of the span; 2x it <= e1_min_span_fraction)");
   v("best_effort_crossrange_fraction", p.best_effort_crossrange_fraction, U::kNone, 0.0, 1.0,
     "best-effort reversal accepted below this share of b");
   v("lateral_move_span_fraction", p.lateral_move_span_fraction, U::kNone, 0.0, 1.0, "lateral ranging alpha above this span");
@@ -63,6 +76,15 @@ void visit_planner_params(Params& p, Visitor&& v) {
   v("alpha_scan_steps", p.alpha_scan_steps, U::kNone, 10, 100000, "alpha(L/D max) scan steps");
   v("lift_scale_min", p.lift_scale_min, U::kNone, 0.01, 1.0, "least accepted in-flight L/D estimate");
   v("lift_scale_max", p.lift_scale_max, U::kNone, 1.0, 100.0, "largest accepted in-flight L/D estimate");
+}
+
+/// The first key whose value breaks a relation between planner fields (nullptr: consistent):
+/// the breakpoint clamps must leave E1 and E2 an interval, E1 in
+/// [TAEM + e1_min, E0 - gap] and E2 in [TAEM + gap, E1 - gap], gap = segment_min_span_fraction.
+inline const char* planner_params_inconsistency(const PlannerParams& p) {
+  if (!(p.e1_min_span_fraction + p.segment_min_span_fraction <= 1.0)) return "planner.e1_min_span_fraction";
+  if (!(2.0 * p.segment_min_span_fraction <= p.e1_min_span_fraction)) return "planner.segment_min_span_fraction";
+  return nullptr;
 }
 
 }  // namespace reentry::fsw
