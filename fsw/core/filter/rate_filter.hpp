@@ -4,7 +4,7 @@
 // so it reaches a constant target without overshoot (v_allowed = sqrt(2 a |e|)).
 // Known limitation: the output lands exactly on the target at a GNC tick, so when a short
 // move (shorter than rate_max^2 / accel_max) does not end on a tick, the landing step brakes
-// up to about 11 % harder than accel_max (tests/guidance_units); long moves respect it exactly.
+// up to about 11 % harder than accel_max (tests/filter); long moves respect it exactly.
 #pragma once
 
 #include "guidance_types.hpp"
@@ -24,7 +24,6 @@ class RateFilter {
 
   double value() const { return x_; }
   double rate() const { return v_; }
-  bool initialised() const { return dt_s_ > 0.0; }
 
  private:
   double rate_max_ = 0.0;

@@ -53,7 +53,7 @@ void ConstraintLimiter::init(const OnboardModels& models, const TrackerParams& p
 double ConstraintLimiter::pullout_drag_mps2(const RelativeState& s, double sigma_now_rad) const {
   const double D = s.drag_mps2;
   if (!(D > params_->min_drag_mps2)) return D;
-  const double dlnrho_dr = models_->dlnrho_dr_fd(s.altitude_m, 100.0);
+  const double dlnrho_dr = models_->dlnrho_dr_fd(s.altitude_m, kTrackerDensityGradientStep_m);
   if (!(dlnrho_dr < 0.0)) return D;
   // Net downward acceleration without lift, with the Earth-rate term of (2.45) (an eastbound
   // vehicle near orbital speed is held up by it).
@@ -86,10 +86,10 @@ double ConstraintLimiter::sensed_drag_limit_mps2(const RelativeState& s, double 
   // limit by scaling the present drag. A density error does not move the limit; a C_D error
   // moves it as it moves q itself.
   const double D = s.drag_mps2;
-  if (!(D > params_->min_drag_mps2) || !(cd > 0.0)) return 1e300;
+  if (!(D > params_->min_drag_mps2) || !(cd > 0.0)) return kUnconstrainedDrag_mps2;
   const double q = D / (cd * models_->area_over_mass());
   const double margin = limits_.constraint_margin;
-  double limit = 1e300;
+  double limit = kUnconstrainedDrag_mps2;
   auto scale_linear = [&](double value, double max) {
     if (max > 0.0 && value > 0.0) limit = std::fmin(limit, D * margin * max / value);
   };
@@ -123,7 +123,7 @@ double ConstraintLimiter::load_relief_alpha(double alpha_cmd_rad, double alpha_f
   // Never below the floor: shedding lift in a dive would deepen it (q then grows without bound).
   double lo = std::fmin(std::fmax(alpha_floor_rad, 0.0), alpha_cmd_rad), hi = alpha_cmd_rad;
   if (accel_at(lo) > limit) return lo;
-  for (int i = 0; i < 30; ++i) {
+  for (int i = 0; i < kAlphaBisectionSteps; ++i) {
     const double mid = 0.5 * (lo + hi);
     if (accel_at(mid) > limit) hi = mid; else lo = mid;
   }

@@ -20,6 +20,8 @@ namespace reentry::fsw {
 /// and the air exponential with scale height H (vertical energy balance, see the .cpp);
 /// D itself when not sinking, kNoPullOut_mps2 when the lift cannot arrest the sink.
 inline constexpr double kNoPullOut_mps2 = 1e6;
+/// The sensed-constraint drag limit where no constraint applies.
+inline constexpr double kUnconstrainedDrag_mps2 = 1e300;
 double wings_level_pullout_drag_mps2(double drag_mps2, double lift_over_drag, double h_dot_mps, double g_eff_mps2,
                                      double scale_height_m);
 /// The same pull-out started after a roll from bank sigma0 to wings level lasting t_roll:
@@ -64,7 +66,7 @@ class ConstraintLimiter {
   bool pullout_arrested() const { return pullout_arrested_; }
 
   /// Largest drag at which the sensed path-constraint values stay within the planned fraction
-  /// of their limits, at alpha_rad with drag coefficient cd (1e300: unconstrained).
+  /// of their limits, at alpha_rad with drag coefficient cd (kUnconstrainedDrag_mps2: none applies).
   double sensed_drag_limit_mps2(const RelativeState& s, double alpha_rad, double cd) const;
   /// The alpha command lowered (never below alpha_floor) until the sensed aerodynamic
   /// acceleration scaled to it stays within the planned fraction of the load-factor limit.

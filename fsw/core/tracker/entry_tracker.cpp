@@ -7,6 +7,10 @@
 namespace reentry::fsw {
 namespace {
 
+// Half-step of the central difference of C_D along the plan's (alpha(E), h) path (7.14), as a
+// fraction of the entry energy.
+constexpr double kCdSlopeEnergyStep = 1e-3;
+
 bool finite_state(const RelativeState& s) {
   const double v[] = {s.t_s, s.radius_m, s.altitude_m, s.latitude_rad, s.velocity_mps, s.flight_path_rad,
                       s.heading_rad, s.energy_Jpkg, s.drag_mps2, s.lift_mps2};
@@ -137,7 +141,7 @@ CycleContext EntryTracker::make_context(const RelativeState& s, double dt_s, con
                             std::fmax(s.drag_mps2, params_.min_drag_mps2);
   // A density error does not move a q-type bound in drag space, a C_D / mass error does, and
   // the sensed ratio K cannot tell them apart (no air data): the bound is taken as planned.
-  c.plan_bound_mps2 = ref.drag_max > 0.0 ? ref.drag_max : 1e300;
+  c.plan_bound_mps2 = ref.drag_max > 0.0 ? ref.drag_max : kUnconstrainedDrag_mps2;
   // Time to TAEM at the present drag with the speed falling linearly to the TAEM speed
   // (E' = -D V): with the present speed instead, t_go comes out 25-35 % short.
   const double V = s.velocity_mps;
@@ -183,8 +187,8 @@ DragLoopCommand EntryTracker::drag_command(const CycleContext& c, const RefPoint
   const double V = s.velocity_mps, D = s.drag_mps2, V2 = V * V;
   // Actual D' from (7.14): density gradient and C_D' from the on-board models, alpha along the
   // plan (which may differ from the mission profile: ranging alpha).
-  const double dlnrho_dr = models_.dlnrho_dr_fd(s.altitude_m, 100.0);
-  const double de = 1e-3 * entry_energy_Jpkg_;
+  const double dlnrho_dr = models_.dlnrho_dr_fd(s.altitude_m, kTrackerDensityGradientStep_m);
+  const double de = kCdSlopeEnergyStep * entry_energy_Jpkg_;
   const double cd_slope =
       models_.drag_coefficient_slope(ref.alpha + ref.alpha_prime * de, s.energy_Jpkg + de, s.altitude_m,
                                      ref.alpha - ref.alpha_prime * de, s.energy_Jpkg - de, s.altitude_m);

@@ -43,7 +43,7 @@ double ReversalExecution::modulated_alpha(double alpha_rad, double mach, double 
   // elsewhere a lower alpha would only cost drag.
   constexpr double kDegree_rad = M_PI / 180.0;
   if (!(aero.cl(alpha_rad - kDegree_rad, mach) < cl_ref) || !(aero.cl(lo, mach) < lift_ratio * cl_ref)) return alpha_rad;
-  for (int i = 0; i < 30; ++i) {
+  for (int i = 0; i < kAlphaBisectionSteps; ++i) {
     const double mid = 0.5 * (lo + hi);
     if (aero.cl(mid, mach) > lift_ratio * cl_ref) hi = mid; else lo = mid;
   }

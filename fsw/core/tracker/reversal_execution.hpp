@@ -25,9 +25,6 @@ class ReversalExecution {
   void begin(double t_s, double t_rev_s, double dt_s, double sigma0_rad, bool ends_in_final_window);
   bool active(double t_s) const { return t_s < until_t_s_; }
   bool started() const { return start_t_s_ >= 0.0; }
-  double start_t_s() const { return start_t_s_; }
-  double sigma0_rad() const { return sigma0_rad_; }
-  bool ends_in_final_window() const { return ends_in_final_window_; }
 
   /// The modulation is allowed only while the drag reference is below modulation_bound_margin
   /// of the path-constraint bound (times the sensed drag ratio K), so that the range control

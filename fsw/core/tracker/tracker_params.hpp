@@ -13,6 +13,14 @@
 
 namespace reentry::fsw {
 
+/// Half-step of the tracker's central difference of d(ln rho)/dr on the on-board atmosphere
+/// ((7.14)-(7.16)) at the sensed altitude: the drag loop's D' and the pull-out's local scale
+/// height (the planner takes its own step for its grid).
+inline constexpr double kTrackerDensityGradientStep_m = 100.0;
+/// Bisection steps of the alpha searches (load relief, reversal modulation): 2^-30 of the
+/// searched alpha interval.
+inline constexpr int kAlphaBisectionSteps = 30;
+
 struct TrackerParams {
   // Drag loop (3.12)-(3.18). Zero omega0 / k_integral: derived by derive_gains.
   double zeta = 0.7071067811865476;          // damping ratio of the drag-error dynamics (3.12)
