@@ -251,6 +251,11 @@ ArrivalGeometry PcLateral::geometry(double latitude_rad, double longitude_rad, d
     const double r_turn = velocity_mps * velocity_mps * std::cos(flight_path_rad) / turn_accel;
     approach = std::fmin(approach, std::sqrt(2.0 * p.approach_turn_factor * std::fabs(g.cross_m) / r_turn));
   }
+  // At most n times the line of sight's angle off the line (eps): flown at n |eps| towards the
+  // line, the offset falls as y ~ x^n with the distance x to go, so with n > 1 the vehicle joins
+  // the line ahead of the aim on its heading, spreading the turn over the flight; far from the
+  // aim the field alone would steer up to chi_inf for an offset of a few degrees of sight line.
+  approach = std::fmin(approach, p.sight_line_factor * std::fabs(eps));
   g.target_heading_rad = wrap_pi(g.line_heading_rad + std::copysign(approach, g.cross_m));
   return g;
 }

@@ -83,6 +83,7 @@ struct PredictorCorrectorParams {
   double approach_angle_max_rad = 45.0 * M_PI / 180.0;  // vector field chi_inf
   double cross_track_scale_m = 30000.0;  // vector field y_s
   double approach_turn_factor = 1.5;     // approach angle <= sqrt(2 k |y| / R_turn)
+  double sight_line_factor = 2.0;        // approach angle <= n |eps| (eps: line of sight off the line)
   double aim_min_range_m = 1000.0;       // offset angle undefined closer than this
   // Capture guard: farther than capture_overshoot_m from the line, a bank towards it is flown only
   // while a turn away started now (roll, then the circular arc of the present turn) would stop
@@ -149,6 +150,7 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("approach_angle_max_deg", p.approach_angle_max_rad, U::kDeg, 1.0, 90.0, "arrival-line field chi_inf");
   v("cross_track_scale_m", p.cross_track_scale_m, U::kNone, 100.0, 1e6, "arrival-line field y_s [m]");
   v("approach_turn_factor", p.approach_turn_factor, U::kNone, 0.1, 10.0, "approach-angle turn bound k");
+  v("sight_line_factor", p.sight_line_factor, U::kNone, 1.0, 100.0, "approach angle <= n x the line of sight's angle off the line");
   v("aim_min_range_m", p.aim_min_range_m, U::kNone, 0.0, 1e5, "offset angle undefined closer than this [m]");
   v("capture_overshoot_m", p.capture_overshoot_m, U::kNone, 0.0, 1e6, "capture guard: largest overshoot past the line [m]");
   v("final_reversal_window", p.final_reversal_window, U::kNone, 0.0, 10.0, "final-reversal window / reversal time");
