@@ -2,7 +2,7 @@
 // Unified Method", JGCD 37(3), 2014). Every field is SI with its unit in the name; the defaults
 // are one set for all vehicles. A mission sets any of them in its [guidance.predictor_corrector]
 // table under the key visit_pc_params names (the key carries the unit of the file, `_deg`), within
-// the documented range; docs/predictor_corrector.md has the rule each belongs to.
+// the documented range; docs/guidance_design.md section 10 has the rule each belongs to.
 #pragma once
 
 #include <cmath>
