@@ -1,14 +1,20 @@
 // On-board vehicle models (fsw/core/models): heat-flux models against hand-computed values,
-// the start-up trim solve against hand-solved cases and the truth model's trim.
+// the start-up trim solve against hand-solved cases and the truth model's trim, the tables at
+// one Mach against the general bilinear look-up.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <memory>
+#include <random>
 
 #include <reentry/config/mission.hpp>
 
 #include "guidance/mission_adapter.hpp"
 #include "models/onboard_models.hpp"
+#include "numerics/table_lookup.hpp"
 #include "vehicle/aerodynamics.hpp"
 
 namespace {
@@ -231,5 +237,130 @@ TEST(OnboardTrim, HorusNodesEqualTheTruthModelsTrim) {
   double cl, cd;
   basic.aero().coefficients(grid.alpha_rad[30], grid.mach[4], cl, cd);
   EXPECT_EQ(cd, truth->coefficients(grid.alpha_rad[30], grid.mach[4], 5000.0, false).cd);
+}
+}  // namespace
+
+// ------------------------------------------------------------------ the aero tables at one Mach
+// OnboardAero::MachSlice (the Mach interval found once, alpha bracketed alone) must give the
+// general bilinear look-up bit for bit: the guidance commands are computed through both. The
+// reference is numerics::bilinear on the same arrays, called directly, and OnboardAero::cl/cd.
+namespace {
+using reentry::fsw::OnboardAero;
+
+uint64_t bits(double x) {
+  uint64_t b = 0;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+
+struct RandomTable {
+  int n_alpha = 0, n_mach = 0;
+  double alpha[OnboardAero::kMaxAlpha] = {}, mach[OnboardAero::kMaxMach] = {};
+  double cl[OnboardAero::kMaxAlpha * OnboardAero::kMaxMach] = {}, cd[OnboardAero::kMaxAlpha * OnboardAero::kMaxMach] = {};
+};
+
+// A table with uneven axes (spacings over two decades) and rough values, C_L of both signs.
+std::unique_ptr<RandomTable> random_table(std::mt19937_64& rng, int n_alpha, int n_mach) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  auto t = std::make_unique<RandomTable>();
+  t->n_alpha = n_alpha;
+  t->n_mach = n_mach;
+  double a = -5.0 * kDeg * u(rng), m = 0.3 + u(rng);
+  for (int i = 0; i < n_alpha; ++i) t->alpha[i] = (a += std::pow(10.0, -2.0 * u(rng)) * 2.0 * kDeg);
+  for (int j = 0; j < n_mach; ++j) t->mach[j] = (m += std::pow(10.0, -2.0 * u(rng)) * 3.0);
+  for (int k = 0; k < n_alpha * n_mach; ++k) {
+    t->cl[k] = 2.0 * u(rng) - 0.5;
+    t->cd[k] = 0.02 + u(rng);
+  }
+  return t;
+}
+
+// Queries on one axis: inside (uniform), on the knots, far outside, and NaN.
+double axis_query(std::mt19937_64& rng, const double* g, int n) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double lo = g[0], hi = g[n - 1], span = hi - lo, r = u(rng);
+  if (r < 0.15) return g[static_cast<int>(u(rng) * n) % n];
+  if (r < 0.20) return lo - span * u(rng);
+  if (r < 0.25) return hi + span * u(rng);
+  if (r < 0.26) return std::nan("");
+  return lo + span * u(rng);
+}
+
+// Compares a slice at `mach` with the general look-up at `n` alphas: random ones, then the
+// midpoints of a bisection (the tracker's use, where the slice's last-interval path applies).
+void expect_slice_equals_bilinear(const OnboardAero& aero, const RandomTable& t, double mach, std::mt19937_64& rng,
+                                  int n) {
+  const OnboardAero::MachSlice slice = aero.at_mach(mach);
+  const double scale = aero.lift_scale();
+  auto check = [&](double alpha) {
+    const double cl_general = scale * reentry::numerics::bilinear(t.alpha, t.n_alpha, t.mach, t.n_mach, t.cl, alpha, mach);
+    const double cd_general = reentry::numerics::bilinear(t.alpha, t.n_alpha, t.mach, t.n_mach, t.cd, alpha, mach);
+    ASSERT_EQ(bits(slice.cl(alpha)), bits(cl_general)) << alpha << " " << mach;
+    ASSERT_EQ(bits(slice.cd(alpha)), bits(cd_general)) << alpha << " " << mach;
+    ASSERT_EQ(bits(slice.cl(alpha)), bits(aero.cl(alpha, mach))) << alpha << " " << mach;
+    ASSERT_EQ(bits(slice.cd(alpha)), bits(aero.cd(alpha, mach))) << alpha << " " << mach;
+  };
+  for (int k = 0; k < n; ++k) check(axis_query(rng, t.alpha, t.n_alpha));
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double target = 2.0 * u(rng) - 0.5;
+  double lo = t.alpha[0] - 0.1, hi = t.alpha[t.n_alpha - 1] + 0.1;
+  for (int k = 0; k < 60; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    check(mid);
+    (slice.cl(mid) > target ? hi : lo) = mid;
+  }
+}
+
+TEST(OnboardAeroMachSlice, EqualsTheBilinearLookUpBitForBitOnRandomTables) {
+  std::mt19937_64 rng(20240611);
+  std::uniform_int_distribution<int> n_alpha(2, OnboardAero::kMaxAlpha), n_mach(1, OnboardAero::kMaxMach);
+  for (int table = 0; table < 200; ++table) {
+    // Every fourth table has a single Mach column (the slice then has no Mach weight).
+    const auto t = random_table(rng, n_alpha(rng), table % 4 == 0 ? 1 : n_mach(rng));
+    OnboardAero aero;
+    ASSERT_EQ(aero.init(t->alpha, t->n_alpha, t->mach, t->n_mach, t->cl, t->cd), reentry::fsw::Status::kOk);
+    aero.set_lift_scale(table % 2 == 0 ? 1.0 : 0.8 + 0.4 * std::uniform_real_distribution<double>(0.0, 1.0)(rng));
+    for (int m = 0; m < 25; ++m) {
+      expect_slice_equals_bilinear(aero, *t, axis_query(rng, t->mach, t->n_mach), rng, 40);
+      if (HasFatalFailure()) return;
+    }
+  }
+}
+
+TEST(OnboardAeroMachSlice, EqualsTheBilinearLookUpBitForBitOnTheVehicleTables) {
+  // The flown tables (X-33 basic, HORUS trimmed at start-up, X-38), over their whole grids.
+  std::mt19937_64 rng(7);
+  for (const char* name : {"x33", "horus", "x38"}) {
+    const reentry::config::LoadResult loaded = reentry::config::load_mission(name);
+    ASSERT_TRUE(loaded.ok) << loaded.error;
+    OnboardModels models;
+    ASSERT_EQ(init_from_mission(models, loaded.mission), reentry::fsw::Status::kOk);
+    const auto& grid = loaded.mission.vehicle.aero.cl;
+    auto t = std::make_unique<RandomTable>();
+    t->n_alpha = static_cast<int>(grid.alpha_rad.size());
+    t->n_mach = static_cast<int>(grid.mach.size());
+    std::copy(grid.alpha_rad.begin(), grid.alpha_rad.end(), t->alpha);
+    std::copy(grid.mach.begin(), grid.mach.end(), t->mach);
+    // The tables as the models hold them (trimmed or not), read back at the nodes.
+    for (int i = 0; i < t->n_alpha; ++i) {
+      for (int j = 0; j < t->n_mach; ++j) {
+        t->cl[i * t->n_mach + j] = models.aero().cl(t->alpha[i], t->mach[j]);
+        t->cd[i * t->n_mach + j] = models.aero().cd(t->alpha[i], t->mach[j]);
+      }
+    }
+    for (int m = 0; m < 400; ++m) {
+      expect_slice_equals_bilinear(models.aero(), *t, axis_query(rng, t->mach, t->n_mach), rng, 50);
+      if (HasFatalFailure()) return;
+    }
+  }
+}
+
+TEST(OnboardAeroMachSlice, AnEmptySliceOrTableGivesZero) {
+  const OnboardAero::MachSlice empty;
+  EXPECT_EQ(empty.cl(0.3), 0.0);
+  EXPECT_EQ(empty.cd(0.3), 0.0);
+  const OnboardAero aero;  // not initialised
+  EXPECT_EQ(aero.at_mach(5.0).cl(0.3), aero.cl(0.3, 5.0));
+  EXPECT_EQ(aero.at_mach(5.0).cd(0.3), 0.0);
 }
 }  // namespace

@@ -25,6 +25,25 @@ double us76_temperature_K(double altitude_m) {
   return kBaseT_K[layer] + kLapse_Kpm[layer] * (h - kBase_m[layer]);
 }
 
+// Interval j and weight w of the upper node of the grid g at q, clamped at the edges: the rules
+// and the expression of numerics::bilinear's axes, which OnboardAero::MachSlice must equal bit
+// for bit.
+void clamped_interval(const double* g, int n, double q, int hint, int& j, double& w) {
+  if (n < 2) {
+    j = 0;
+    w = 0.0;
+    return;
+  }
+  j = numerics::bracket_index(g, n, q, hint);
+  if (!(q > g[0])) {
+    w = 0.0;
+  } else if (q >= g[n - 1]) {
+    w = 1.0;
+  } else {
+    w = (q - g[j]) / (g[j + 1] - g[j]);
+  }
+}
+
 bool strictly_increasing(const double* x, int n) {
   for (int i = 1; i < n; ++i) {
     if (!(x[i] > x[i - 1])) return false;
@@ -158,6 +177,25 @@ void OnboardAero::coefficients(double alpha_rad, double mach, double& cl, double
 }
 double OnboardAero::cl(double alpha_rad, double mach) const { return lift_scale_ * interpolate(cl_, alpha_rad, mach); }
 double OnboardAero::cd(double alpha_rad, double mach) const { return interpolate(cd_, alpha_rad, mach); }
+
+OnboardAero::MachSlice OnboardAero::at_mach(double mach) const {
+  MachSlice slice;
+  slice.aero_ = this;
+  clamped_interval(mach_, n_mach_, mach, hint_mach_, slice.j_, slice.w_);
+  slice.j1_ = n_mach_ >= 2 ? slice.j_ + 1 : slice.j_;
+  slice.hint_alpha_ = hint_alpha_;
+  return slice;
+}
+
+double OnboardAero::MachSlice::interpolate_general(const double* v, double alpha_rad) const {
+  const OnboardAero& a = *aero_;
+  if (a.n_alpha_ < 1 || a.n_mach_ < 1) return 0.0;
+  int i = 0;
+  double wx = 0.0;
+  clamped_interval(a.alpha_rad_, a.n_alpha_, alpha_rad, hint_alpha_, i, wx);
+  if (a.n_alpha_ >= 2) hint_alpha_ = i;
+  return combine(v, i, a.n_alpha_ >= 2 ? i + 1 : i, wx);
+}
 
 // ---------------------------------------------------------------- alpha profile
 Status AlphaProfile::init(const double* e_norm, const double* alpha_rad, int n) {

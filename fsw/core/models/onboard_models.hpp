@@ -85,6 +85,52 @@ class OnboardAero {
   static constexpr int kMaxAlpha = 64;
   static constexpr int kMaxMach = 64;
 
+  /// The tables along alpha at one Mach number, for searches in alpha at a fixed flight
+  /// condition: the Mach interval and weight are found once (at_mach), each look-up then
+  /// brackets alpha alone. Its values are those of cl() and cd() at that Mach bit for bit: the
+  /// same clamping and the same bilinear expression, evaluated in the same order. Refers to
+  /// the OnboardAero it came from: use it while that object, its tables and its lift scale
+  /// stay as they are (within one cycle or one plan step). Copies are independent searches
+  /// (each keeps its own hint); a default-constructed slice has no table and gives 0.
+  class MachSlice {
+   public:
+    double cl(double alpha_rad) const {
+      return aero_ == nullptr ? 0.0 : aero_->lift_scale_ * interpolate(aero_->cl_, alpha_rad);
+    }
+    double cd(double alpha_rad) const { return aero_ == nullptr ? 0.0 : interpolate(aero_->cd_, alpha_rad); }
+
+   private:
+    friend class OnboardAero;
+    double interpolate(const double* table, double alpha_rad) const {
+      const OnboardAero& a = *aero_;
+      const double* x = a.alpha_rad_;
+      const int i = hint_alpha_;
+      // Inside the last interval (most steps of a search are): the interval and the weight
+      // numerics::bilinear finds there (at x[0] the general path's literal 0 applies).
+      if (i >= 0 && i + 1 < a.n_alpha_ && alpha_rad < x[i + 1] && (i > 0 ? x[i] <= alpha_rad : x[0] < alpha_rad)) {
+        return combine(table, i, i + 1, (alpha_rad - x[i]) / (x[i + 1] - x[i]));
+      }
+      return interpolate_general(table, alpha_rad);
+    }
+    double interpolate_general(const double* table, double alpha_rad) const;
+    /// numerics::bilinear's expression, Mach weight w_.
+    double combine(const double* v, int i, int i1, double wx) const {
+      const int ny = aero_->n_mach_;
+      const double wy = w_;
+      const double v00 = v[i * ny + j_];
+      const double v01 = v[i * ny + j1_];
+      const double v10 = v[i1 * ny + j_];
+      const double v11 = v[i1 * ny + j1_];
+      return (1.0 - wx) * ((1.0 - wy) * v00 + wy * v01) + wx * ((1.0 - wy) * v10 + wy * v11);
+    }
+    const OnboardAero* aero_ = nullptr;
+    int j_ = 0;              // Mach interval [mach_j, mach_j1]
+    int j1_ = 0;             // j + 1, or j with a single Mach
+    double w_ = 0.0;         // weight of Mach node j1
+    mutable int hint_alpha_ = -1;  // search hint only (numerics::bracket_index)
+  };
+  MachSlice at_mach(double mach) const;
+
   /// Trimmed C_L, C_D on the data's grid (solve_trimmed_coefficients). Start-up only.
   Status init_trimmed(const TrimAeroData& data);
   /// Tables over (alpha, Mach), row-major: values[i_alpha * n_mach + i_mach].

@@ -109,16 +109,11 @@ double ConstraintLimiter::load_relief_alpha(double alpha_cmd_rad, double alpha_f
   // The aerodynamic acceleration at the sensed dynamic pressure scales with the resultant
   // coefficient C_R = hypot(C_L, C_D); the command is lowered (bisection, bounded). Ratios of
   // table coefficients, so a C_L / C_D scale error does not move the limit.
-  double cl, cd;
-  models_->aero().coefficients(alpha_flown_rad, mach, cl, cd);
-  const double c_flown = std::hypot(cl, cd);
+  const OnboardAero::MachSlice aero = models_->aero().at_mach(mach);  // one Mach: alpha alone varies
+  const double c_flown = std::hypot(aero.cl(alpha_flown_rad), aero.cd(alpha_flown_rad));
   const double limit = limits_.constraint_margin * limits_.load_factor_max_mps2;
   if (!(c_flown > 0.0) || !(aero_accel_mps2 > 0.0) || !(limit > 0.0)) return alpha_cmd_rad;
-  auto accel_at = [&](double alpha) {
-    double l, d;
-    models_->aero().coefficients(alpha, mach, l, d);
-    return aero_accel_mps2 * std::hypot(l, d) / c_flown;
-  };
+  auto accel_at = [&](double alpha) { return aero_accel_mps2 * std::hypot(aero.cl(alpha), aero.cd(alpha)) / c_flown; };
   if (accel_at(alpha_cmd_rad) <= limit) return alpha_cmd_rad;
   // Never below the floor: shedding lift in a dive would deepen it (q then grows without bound).
   double lo = std::fmin(std::fmax(alpha_floor_rad, 0.0), alpha_cmd_rad), hi = alpha_cmd_rad;

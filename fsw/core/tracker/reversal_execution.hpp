@@ -46,6 +46,9 @@ class ReversalExecution {
                        double u_over_lod, bool final_reversal_done) const;
 
  private:
+  /// lift_ratio with cos(sigma0) given (a quadrature over the roll computes it once).
+  double lift_ratio(double sigma0_rad, double cos_sigma0, double t_rel_s) const;
+
   const OnboardModels* models_ = nullptr;
   const TrackerParams* params_ = nullptr;
   double sigma_rate_max_radps_ = 0.0;
