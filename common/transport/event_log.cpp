@@ -104,6 +104,20 @@ std::int64_t wall_clock_us() {
 EventLogWriter::EventLogWriter() = default;
 EventLogWriter::~EventLogWriter() { close(); }
 
+void EventLogWriter::note_io_error() {
+  // The first failure is the one reported; nothing is written after it (a partial write has
+  // already broken the framing), the ring is still drained so that no caller waits on it.
+  if (io_error_.load(std::memory_order_relaxed)) return;
+  io_errno_.store(errno != 0 ? errno : EIO, std::memory_order_relaxed);
+  io_error_.store(true, std::memory_order_release);
+}
+
+std::string EventLogWriter::error() const {
+  if (!io_error()) return {};
+  return path_ + ": " + std::strerror(io_errno_.load(std::memory_order_relaxed)) + " (log: " +
+         std::to_string(written()) + " of " + std::to_string(recorded()) + " records written)";
+}
+
 bool EventLogWriter::open(const std::string& path, std::size_t ring_bytes, WhenFull when_full, std::string& error) {
   if (is_open()) {
     error = "log already open";
@@ -111,9 +125,14 @@ bool EventLogWriter::open(const std::string& path, std::size_t ring_bytes, WhenF
   }
   std::uint64_t cap = 1u << 20;
   while (cap < ring_bytes && cap < (std::uint64_t{1} << 34)) cap <<= 1;
+  path_ = path;
+  io_error_.store(false);
+  io_errno_.store(0);
+  written_.store(0);
+  errno = 0;
   file_ = std::make_unique<lcm::LogFile>(path, "w");
   if (!file_->good()) {
-    error = "cannot create log '" + path + "': " + std::strerror(errno);
+    error = path + ": " + std::strerror(errno) + " (the log cannot be created)";
     file_.reset();
     return false;
   }
@@ -201,26 +220,11 @@ void EventLogWriter::writer_loop() {
     if (tail == head) {
       if (unflushed) {
         // Flushed after every batch: a process killed mid-run leaves a log up to its last batch.
-        if (std::fflush(file_->getFilePtr()) != 0) io_error_.store(true, std::memory_order_relaxed);
+        if (!io_error() && std::fflush(file_->getFilePtr()) != 0) note_io_error();
         unflushed = false;
       }
       if (stop_.load(std::memory_order_acquire) && head_.load(std::memory_order_acquire) == tail) {
-        // Closing: the seal covers every event written.
-        reentry::log_seal_t seal{};
-        seal.utime = wall_clock_us();
-        seal.events = digest_.events();
-        seal.bytes = digest_.bytes();
-        seal.crc32 = digest_.crc();
-        seal.dropped = dropped_.load(std::memory_order_relaxed);
-        const int n = seal.encode(seal_buffer_.data(), 0, static_cast<int>(seal_buffer_.size()));
-        ev.eventnum = 0;
-        ev.timestamp = seal.utime;
-        ev.channel = kSealChannel;
-        ev.datalen = static_cast<std::int32_t>(n > 0 ? n : 0);
-        ev.data = seal_buffer_.data();
-        if (file_->writeEvent(&ev) != 0 || std::fflush(file_->getFilePtr()) != 0) {
-          io_error_.store(true, std::memory_order_relaxed);
-        }
+        if (!io_error()) write_seal();  // the seal covers every event written
         break;
       }
       std::this_thread::sleep_for(std::chrono::microseconds(500));
@@ -243,9 +247,14 @@ void EventLogWriter::writer_loop() {
       ev.channel = channel;
       ev.datalen = static_cast<std::int32_t>(h.data_len);
       ev.data = const_cast<std::uint8_t*>(ring_.get() + off + sizeof h + h.channel_len);
-      if (file_->writeEvent(&ev) != 0) io_error_.store(true, std::memory_order_relaxed);
-      digest_.add(digest_.events(), ev.timestamp, ch, h.channel_len, ev.data, ev.datalen);
-      written_.fetch_add(1, std::memory_order_relaxed);
+      if (!io_error()) {
+        if (file_->writeEvent(&ev) != 0) {
+          note_io_error();
+        } else {
+          digest_.add(digest_.events(), ev.timestamp, ch, h.channel_len, ev.data, ev.datalen);
+          written_.fetch_add(1, std::memory_order_relaxed);
+        }
+      }
       tail += h.bytes;
       tail_.store(tail, std::memory_order_release);  // room for the producer as soon as possible
     }
@@ -253,14 +262,39 @@ void EventLogWriter::writer_loop() {
   }
 }
 
-void EventLogWriter::close() {
-  if (!is_open()) return;
+bool EventLogWriter::write_seal() {
+  lcm::LogEvent& ev = *event_;
+  reentry::log_seal_t seal{};
+  seal.utime = wall_clock_us();
+  seal.events = digest_.events();
+  seal.bytes = digest_.bytes();
+  seal.crc32 = digest_.crc();
+  seal.dropped = dropped_.load(std::memory_order_relaxed);
+  const int n = seal.encode(seal_buffer_.data(), 0, static_cast<int>(seal_buffer_.size()));
+  ev.eventnum = 0;
+  ev.timestamp = seal.utime;
+  ev.channel = kSealChannel;
+  ev.datalen = static_cast<std::int32_t>(n > 0 ? n : 0);
+  ev.data = seal_buffer_.data();
+  if (file_->writeEvent(&ev) != 0 || std::fflush(file_->getFilePtr()) != 0) {
+    note_io_error();
+    return false;
+  }
+  return true;
+}
+
+bool EventLogWriter::close() {
+  if (!is_open()) return !io_error();
   stop_.store(true, std::memory_order_release);
   if (writer_.joinable()) writer_.join();
+  // Everything was flushed after the seal; a flush now reports what the stream still holds.
+  errno = 0;
+  if (!io_error() && std::fflush(file_->getFilePtr()) != 0) note_io_error();
   file_.reset();  // closes the file
   io_buffer_.reset();
   ring_.reset();
   capacity_ = 0;
+  return !io_error();
 }
 
 std::string LogFraming::describe() const {
@@ -279,6 +313,36 @@ std::string LogFraming::describe() const {
   if (!s.empty()) s.resize(s.size() - 2);
   return s;
 }
+
+namespace {
+
+// The first plausible event at or after `pos` (-1: none); its lengths in chan_len, data_len.
+std::int64_t next_plausible_event(const std::uint8_t* f, std::int64_t size, std::int64_t pos, std::int64_t& chan_len,
+                                  std::int64_t& data_len) {
+  if (plausible_event(f, size, pos, chan_len, data_len)) return pos;
+  for (std::int64_t next = pos + 1; next + kEventHeaderBytes <= size; ++next) {
+    if (f[next] == kSync[0] && plausible_event(f, size, next, chan_len, data_len)) return next;
+  }
+  return -1;
+}
+
+// A seal against the digest of the events before it.
+void judge_seal(const LogEventView& ev, const LogDigest& digest, LogFraming& fr) {
+  reentry::log_seal_t seal{};
+  const bool decodes = seal.decode(ev.data, 0, ev.size) == ev.size;
+  if (decodes && (seal.events != digest.events() || seal.bytes != digest.bytes() ||
+                  seal.crc32 != static_cast<std::int64_t>(digest.crc()))) {
+    fr.seal_problem = "the seal does not match the events before it (" + std::to_string(digest.events()) +
+                      " events read, " + std::to_string(seal.events) + " sealed; CRC " +
+                      (seal.crc32 == static_cast<std::int64_t>(digest.crc()) ? "equal" : "differs") +
+                      "): bytes were changed, added or removed";
+  } else if (!decodes) {
+    fr.seal_problem = "the seal does not decode";
+  }
+  fr.seal_dropped = decodes ? seal.dropped : 0;
+}
+
+}  // namespace
 
 LogFraming read_event_log(const std::string& path, const std::function<bool(const LogEventView&)>& on_event) {
   LogFraming fr;
@@ -318,24 +382,12 @@ LogFraming read_event_log(const std::string& path, const std::function<bool(cons
   bool stopped = false;
   LogDigest digest;
   std::int64_t seal_at_event = -1;
-  reentry::log_seal_t seal{};
-  bool seal_decodes = false;
   for (;;) {
     std::int64_t chan_len = 0, data_len = 0;
-    if (!plausible_event(f, size, pos, chan_len, data_len)) {
-      // Damage: skip to the next plausible event, if any.
-      std::int64_t next = pos + 1;
-      bool found = false;
-      for (; next + kEventHeaderBytes <= size; ++next) {
-        if (f[next] == kSync[0] && plausible_event(f, size, next, chan_len, data_len)) {
-          found = true;
-          break;
-        }
-      }
-      if (!found) break;
-      fr.skipped_bytes += next - pos;
-      pos = next;
-    }
+    const std::int64_t next = next_plausible_event(f, size, pos, chan_len, data_len);
+    if (next < 0) break;
+    fr.skipped_bytes += next - pos;  // damage: skipped to the next plausible event
+    pos = next;
     LogEventView ev;
     ev.eventnum = be64(f + pos + 4);
     ev.timestamp_us = be64(f + pos + 12);
@@ -354,17 +406,7 @@ LogFraming read_event_log(const std::string& path, const std::function<bool(cons
     if (is_seal) {
       if (seal_at_event >= 0 && fr.seal_problem.empty()) fr.seal_problem = "more than one seal";
       seal_at_event = fr.events - 1;
-      seal_decodes = seal.decode(ev.data, 0, ev.size) == ev.size;
-      if (seal_decodes && (seal.events != digest.events() || seal.bytes != digest.bytes() ||
-                           seal.crc32 != static_cast<std::int64_t>(digest.crc()))) {
-        fr.seal_problem = "the seal does not match the events before it (" + std::to_string(digest.events()) +
-                          " events read, " + std::to_string(seal.events) + " sealed; CRC " +
-                          (seal.crc32 == static_cast<std::int64_t>(digest.crc()) ? "equal" : "differs") +
-                          "): bytes were changed, added or removed";
-      } else if (!seal_decodes) {
-        fr.seal_problem = "the seal does not decode";
-      }
-      fr.seal_dropped = seal_decodes ? seal.dropped : 0;
+      judge_seal(ev, digest, fr);
     } else {
       digest.add(ev.eventnum, ev.timestamp_us, ev.channel, ev.channel_len, ev.data, ev.size);
     }

@@ -76,16 +76,22 @@ class EventLogWriter {
   bool record_at(const char* channel, const void* data, int len, std::int64_t timestamp_us);
 
   /// Drains the ring, writes the seal, flushes and closes the file, joins the writer thread.
-  void close();
+  /// False when anything could not be written (see error()): the log is not whole.
+  bool close();
 
   std::int64_t recorded() const { return recorded_.load(std::memory_order_relaxed); }
   std::int64_t dropped() const { return dropped_.load(std::memory_order_relaxed); }
   std::int64_t written() const { return written_.load(std::memory_order_relaxed); }
-  bool io_error() const { return io_error_.load(std::memory_order_relaxed); }
+  bool io_error() const { return io_error_.load(std::memory_order_acquire); }
+  /// "<path>: <reason> (log: <n> of <m> records written)" after a write error, else "".
+  std::string error() const;
+  const std::string& path() const { return path_; }
   double max_wait_s = 10.0;
 
  private:
   void writer_loop();
+  bool write_seal();
+  void note_io_error();
 
   std::unique_ptr<std::uint8_t[]> ring_;
   std::uint64_t capacity_ = 0;
@@ -96,6 +102,8 @@ class EventLogWriter {
   std::atomic<std::int64_t> dropped_{0};
   std::atomic<std::int64_t> written_{0};
   std::atomic<bool> io_error_{false};
+  std::atomic<int> io_errno_{0};  // errno of the first failed write (writer thread)
+  std::string path_;
   WhenFull when_full_ = WhenFull::kWait;
   static constexpr std::size_t kIoBufferBytes = 1u << 20;
   std::unique_ptr<lcm::LogFile> file_;

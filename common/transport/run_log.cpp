@@ -42,6 +42,10 @@ void RunLogCheck::add(const std::string& channel, const std::uint8_t* data, int 
       return;
     }
     cmds_.emplace(cmd.tick, cmd);
+  } else if (channel == "GUIDANCE_STATUS") {
+    if (r_.guidance_mode >= 0) return;  // the first status names the run's mode
+    guidance_status_t status{};
+    if (decode_into(status, data, size, bad)) r_.guidance_mode = status.mode;
   } else if (channel == "RUN_CONTROL") {
     run_control_t rc{};
     if (!decode_into(rc, data, size, bad)) {

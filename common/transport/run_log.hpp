@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <reentry/guidance_cmd_t.hpp>
+#include <reentry/guidance_status_t.hpp>
 #include <reentry/nav_state_t.hpp>
 #include <reentry/run_control_t.hpp>
 
@@ -31,6 +32,7 @@ struct RunCompleteness {
   std::int64_t end_tick = -1;
   std::int8_t end_event = 0;
   std::int64_t nav_after_end = 0;
+  std::int8_t guidance_mode = -1;       // GUIDANCE_STATUS mode of the run (0 lockstep, 1 realtime), -1: none logged
   /// Content damage (undecodable, conflicting, samples after the end): the log is inconsistent.
   bool damaged() const { return undecodable > 0 || conflicting_navs > 0 || nav_after_end > 0 || (end_of_run && end_tick < last_tick); }
   /// Something missing (ticks, answers, the end).

@@ -1,6 +1,7 @@
 #include "app/guidance_node.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -34,19 +35,6 @@ std::int32_t clamp_i32(std::int64_t v) {
 
 }  // namespace
 
-const char* exit_name(int code) {
-  switch (code) {
-    case kExitOk: return "ok";
-    case kExitUsage: return "usage";
-    case kExitLinkLoss: return "link_loss";
-    case kExitReplayDiffers: return "replay_differs";
-    case kExitLogIncomplete: return "log_incomplete";
-    case kExitLogDamaged: return "log_damaged";
-    case kExitTransport: return "transport_error";
-    default: return "unknown";
-  }
-}
-
 GuidanceNode::GuidanceNode(exec::Executive& exec, NavConvertFn convert, void* convert_ctx, double gnc_rate_hz)
     : exec_(exec), convert_(convert), convert_ctx_(convert_ctx), dt_s_(1.0 / gnc_rate_hz) {}
 
@@ -55,6 +43,12 @@ bool GuidanceNode::open_log(const std::string& path, RunMode mode, std::string& 
   const auto policy = mode == RunMode::kRealtime ? transport::EventLogWriter::WhenFull::kDrop
                                                  : transport::EventLogWriter::WhenFull::kWait;
   return log_.open(path, kLogRingBytes, policy, error);
+}
+
+bool GuidanceNode::close_log() {
+  if (log_.close()) return true;
+  std::fprintf(stderr, "reentry_fsw: write failed: %s\n", log_.error().c_str());
+  return false;
 }
 
 template <class Msg>
@@ -210,62 +204,79 @@ void GuidanceNode::publish_safe(double silent_s) {
   publish("GUIDANCE_STATUS", status_);
 }
 
+bool GuidanceNode::link_lost(std::int64_t now, std::int64_t since, const LiveOptions& options) {
+  const bool started = last_tick_answered_ >= 0;
+  const std::int64_t period_ns = static_cast<std::int64_t>(std::llround(dt_s_ * 1e9));
+  const std::int64_t silent = now - since;
+  link_silent_s_ = static_cast<double>(silent) * 1e-9;
+  const std::int64_t limit = started ? static_cast<std::int64_t>(options.link_timeout_ticks) * period_ns
+                                     : static_cast<std::int64_t>(options.startup_timeout_s * 1e9);
+  if (silent <= limit) return false;
+  publish_safe(link_silent_s_);
+  std::fprintf(stderr,
+               "reentry_fsw: link loss: no NAV_STATE for %.3f s (%d ticks of %.3f s) after tick %lld; "
+               "safe command held (alpha %.2f deg, sigma %.2f deg), health flag link_loss; exit %d (%s)\n",
+               link_silent_s_, options.link_timeout_ticks, dt_s_, static_cast<long long>(last_tick_answered_),
+               cmd_.alpha_rad * 180.0 / M_PI, cmd_.sigma_rad * 180.0 / M_PI, kExitLinkLoss, exit_name(kExitLinkLoss));
+  return true;
+}
+
+int GuidanceNode::interrupted() const {
+  const int sig = transport::g_stop_signal;
+  std::fprintf(stderr, "reentry_fsw: interrupted by signal %d after tick %lld: log sealed; exit %d\n", sig,
+               static_cast<long long>(last_tick_answered_), transport::kExitSignalBase + sig);
+  return transport::kExitSignalBase + sig;
+}
+
 int GuidanceNode::run_live(transport::UdpmSocket& net, RunMode mode, const LiveOptions& options) {
   mode_ = mode;
   net_ = &net;
-  const std::int64_t period_ns = static_cast<std::int64_t>(std::llround(dt_s_ * 1e9));
-  const std::int64_t link_ns = static_cast<std::int64_t>(options.link_timeout_ticks) * period_ns;
-  const std::int64_t startup_ns = static_cast<std::int64_t>(options.startup_timeout_s * 1e9);
-  const std::int64_t start_ns = mono_ns();
-  last_alive_ns_ = start_ns;
-  transport::Datagram d;
-  auto link_lost = [&](std::int64_t now, std::int64_t since) {
-    const bool started = last_tick_answered_ >= 0;
-    const std::int64_t silent = now - since;
-    link_silent_s_ = static_cast<double>(silent) * 1e-9;
-    if (silent <= (started ? link_ns : startup_ns)) return false;
-    publish_safe(link_silent_s_);
-    std::fprintf(stderr,
-                 "reentry_fsw: link loss: no NAV_STATE for %.3f s (%d ticks of %.3f s) after tick %lld; "
-                 "safe command held (alpha %.2f deg, sigma %.2f deg), health flag link_loss; exit %d (%s)\n",
-                 link_silent_s_, options.link_timeout_ticks, dt_s_, static_cast<long long>(last_tick_answered_),
-                 cmd_.alpha_rad * 180.0 / M_PI, cmd_.sigma_rad * 180.0 / M_PI, kExitLinkLoss,
-                 exit_name(kExitLinkLoss));
-    return true;
-  };
+  last_alive_ns_ = mono_ns();
+  return mode == RunMode::kLockstep ? run_lockstep(net, options) : run_realtime(net, options);
+}
 
-  if (mode == RunMode::kLockstep) {
-    std::int64_t last_answer_ns = start_ns;
-    for (;;) {
-      const int r = net.receive(d, exec_.awaiting_plan() ? kAwaitPollNs : kIdlePollNs);
-      if (r < 0) {
-        std::fprintf(stderr, "reentry_fsw: receive failed; exit %d (%s)\n", kExitTransport, exit_name(kExitTransport));
-        return kExitTransport;
-      }
-      const std::int64_t answered_before = commands_published_;
-      if (r == 1) on_datagram(d.channel, d.payload, d.payload_len);
-      const std::int64_t now = mono_ns();
-      if (end_of_run_) return kExitOk;
-      if (exec_.awaiting_plan()) {
-        now_ns_ = now;
-        const exec::CycleOutput out = exec_.resume();
-        if (!out.awaiting_plan) {
-          on_cycle(out);
-        } else if (now - last_heartbeat_ns_ >= period_ns) {
-          last_heartbeat_ns_ = now;
-          publish_heartbeat();
-        }
-      }
-      if (commands_published_ != answered_before) last_answer_ns = now;
-      // The simulator owes the next sample from our last answer on; while our cycle waits for
-      // its plan we owe the answer (the heartbeats tell the simulator so).
-      if (!exec_.awaiting_plan() && link_lost(now, std::max(last_alive_ns_, last_answer_ns))) return kExitLinkLoss;
+int GuidanceNode::run_lockstep(transport::UdpmSocket& net, const LiveOptions& options) {
+  const std::int64_t period_ns = static_cast<std::int64_t>(std::llround(dt_s_ * 1e9));
+  transport::Datagram d;
+  std::int64_t last_answer_ns = last_alive_ns_;
+  for (;;) {
+    if (transport::g_stop_signal != 0) return interrupted();
+    const int r = net.receive(d, exec_.awaiting_plan() ? kAwaitPollNs : kIdlePollNs);
+    if (r < 0) {
+      if (transport::g_stop_signal != 0) return interrupted();
+      std::fprintf(stderr, "reentry_fsw: receive failed; exit %d (%s)\n", kExitTransport, exit_name(kExitTransport));
+      return kExitTransport;
     }
+    const std::int64_t answered_before = commands_published_;
+    if (r == 1) on_datagram(d.channel, d.payload, d.payload_len);
+    const std::int64_t now = mono_ns();
+    if (end_of_run_) return kExitOk;
+    if (exec_.awaiting_plan()) {
+      now_ns_ = now;
+      const exec::CycleOutput out = exec_.resume();
+      if (!out.awaiting_plan) {
+        on_cycle(out);
+      } else if (now - last_heartbeat_ns_ >= period_ns) {
+        last_heartbeat_ns_ = now;
+        publish_heartbeat();
+      }
+    }
+    if (commands_published_ != answered_before) last_answer_ns = now;
+    // The simulator owes the next sample from our last answer on; while our cycle waits for
+    // its plan we owe the answer (the heartbeats tell the simulator so).
+    if (!exec_.awaiting_plan() && link_lost(now, std::max(last_alive_ns_, last_answer_ns), options)) return kExitLinkLoss;
   }
-  // Realtime: absolute deadlines start + i*period, newest plausible nav consumed each cycle.
+}
+
+int GuidanceNode::run_realtime(transport::UdpmSocket& net, const LiveOptions& options) {
+  // Absolute deadlines start + i*period, newest plausible nav consumed each cycle.
+  const std::int64_t period_ns = static_cast<std::int64_t>(std::llround(dt_s_ * 1e9));
+  const std::int64_t start_ns = last_alive_ns_;
+  transport::Datagram d;
   for (std::int64_t i = 1;; ++i) {
     const std::int64_t deadline = start_ns + i * period_ns;
     sleep_until_ns(deadline);
+    if (transport::g_stop_signal != 0) return interrupted();
     const std::int64_t woke = mono_ns();
     jitter_us_last_ = static_cast<double>(woke - deadline) * 1e-3;
     jitter_us_max_ = std::max(jitter_us_max_, jitter_us_last_);
@@ -286,7 +297,7 @@ int GuidanceNode::run_live(transport::UdpmSocket& net, RunMode mode, const LiveO
       if (out.emitted) on_cycle(out);
     }
     if (mono_ns() > deadline + period_ns) ++cycle_overruns_;
-    if (link_lost(mono_ns(), last_alive_ns_)) return kExitLinkLoss;
+    if (link_lost(mono_ns(), last_alive_ns_, options)) return kExitLinkLoss;
   }
 }
 
@@ -313,6 +324,11 @@ int check_replay_log(const std::string& log_path, bool compare, bool allow_unsea
   // Lockstep replay needs every tick from the entry interface on, an answer to each, and the
   // end of the run: a log without them cannot reproduce the run and is named, never compared.
   run = check.result(compare);
+  if (run.guidance_mode == static_cast<std::int8_t>(RunMode::kRealtime)) {
+    std::printf("not replayable: %s is the log of a realtime run (plans adopted when ready, ticks skipped): only a "
+                "lockstep run is reproduced bit for bit\n", log_path.c_str());
+    return kExitNotReplayable;
+  }
   if (run.damaged()) {
     std::printf("damaged log: %s\n", run.problem().c_str());
     return kExitLogDamaged;
@@ -368,16 +384,36 @@ int GuidanceNode::run_replay(const std::string& log_path, bool compare, const st
   if (verdict != kExitOk) return verdict;
   std::string err;
   if (!out_log.empty() && !open_log(out_log, RunMode::kReplay, err)) {
-    std::fprintf(stderr, "reentry_fsw: %s\n", err.c_str());
-    return kExitTransport;
+    std::fprintf(stderr, "reentry_fsw: write failed: %s\n", err.c_str());
+    return kExitWriteFailed;
   }
-  std::int64_t compared = 0;
+  const int rc = replay_commands(check, compare, !out_log.empty());
+  const std::vector<std::uint8_t>& end = check.end_bytes();
+  log_.record("RUN_CONTROL", end.data(), static_cast<int>(end.size()));
+  if (!close_log()) return kExitWriteFailed;  // a re-run log that is not whole is never "identical"
+  if (compare && rc == kExitOk) {
+    std::printf("identical (%lld commands, ticks 0..%lld, END_OF_RUN at tick %lld, event %s)\n",
+                static_cast<long long>(replayed_), static_cast<long long>(run.last_tick),
+                static_cast<long long>(run.end_tick), transport::end_event_name(run.end_event));
+  }
+  return rc;
+}
+
+int GuidanceNode::replay_commands(const transport::RunLogCheck& check, bool compare, bool keep_going) {
+  replayed_ = 0;
   int rc_code = kExitOk;
   const auto& logged = check.commands();
   for (const auto& [tick, n] : check.navs()) {
     const std::vector<std::uint8_t>& bytes = check.nav_bytes().at(tick);
     log_.record("NAV_STATE", bytes.data(), static_cast<int>(bytes.size()));
     const exec::CycleOutput out = cycle(n);
+    if (tick == 0 && out.nav_verdict == exec::NavVerdict::kRejectedValues) {
+      // The entry interface of the log is not this mission's: the log is of another mission.
+      std::printf("not replayable: the log's tick-0 sample is not at the entry interface of %s (its position, "
+                  "speed or flight-path angle lies outside the entry dispersions): the log is of another mission\n",
+                  mission_name_.c_str());
+      return kExitNotReplayable;
+    }
     if (!out.emitted) continue;
     on_cycle(out);
     if (!compare || rc_code != kExitOk) continue;
@@ -387,23 +423,15 @@ int GuidanceNode::run_replay(const std::string& log_path, bool compare, const st
       std::printf("differs at tick %lld field %s (replayed %.17g, logged %.17g)\n", static_cast<long long>(tick), field,
                   a, b);
       rc_code = kExitReplayDiffers;
-      if (out_log.empty()) break;
+      if (!keep_going) break;
     }
-    ++compared;
-  }
-  const std::vector<std::uint8_t>& end = check.end_bytes();
-  log_.record("RUN_CONTROL", end.data(), static_cast<int>(end.size()));
-  log_.close();
-  if (compare && rc_code == kExitOk) {
-    std::printf("identical (%lld commands, ticks 0..%lld, END_OF_RUN at tick %lld, event %s)\n",
-                static_cast<long long>(compared), static_cast<long long>(run.last_tick),
-                static_cast<long long>(run.end_tick), transport::end_event_name(run.end_event));
+    ++replayed_;
   }
   return rc_code;
 }
 
-void GuidanceNode::write_status_json(const std::string& path, int exit_code) const {
-  if (path.empty()) return;
+bool GuidanceNode::write_status_json(const std::string& path, int exit_code) const {
+  if (path.empty()) return true;
   const exec::ExecCounters& c = exec_.counters();
   std::ofstream f(path);
   f << "{\n"
@@ -427,6 +455,7 @@ void GuidanceNode::write_status_json(const std::string& path, int exit_code) con
     << "  \"invalid_nav\": " << c.invalid_nav << ",\n"
     << "  \"nav_rejected_values\": " << c.nav_rejected_values << ",\n"
     << "  \"nav_rejected_tick\": " << c.nav_rejected_tick << ",\n"
+    << "  \"nav_reacquired\": " << c.nav_reacquired << ",\n"
     << "  \"duplicate_ticks\": " << c.duplicate_ticks << ",\n"
     << "  \"skipped_ticks\": " << c.skipped_ticks << ",\n"
     << "  \"bad_messages\": " << bad_messages_ << ",\n"
@@ -436,6 +465,12 @@ void GuidanceNode::write_status_json(const std::string& path, int exit_code) con
     << "  \"log_dropped\": " << log_.dropped() << ",\n"
     << "  \"link_silent_ms\": " << link_silent_s_ * 1e3 << "\n"
     << "}\n";
+  f.close();
+  if (!f) {
+    std::fprintf(stderr, "reentry_fsw: write failed: %s: %s\n", path.c_str(), std::strerror(errno));
+    return false;
+  }
+  return true;
 }
 
 }  // namespace reentry::fsw::app

@@ -16,19 +16,24 @@
 
 #include "exec/executive.hpp"
 #include "transport/event_log.hpp"
+#include "transport/exit_status.hpp"
+#include "transport/run_log.hpp"
 #include "transport/udpm.hpp"
 
 namespace reentry::fsw::app {
 
-/// Exit statuses of reentry_fsw (named in its last stderr line and in --status-json).
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitUsage = 2;
-inline constexpr int kExitLinkLoss = 3;        // no usable NAV_STATE for link_timeout_ticks periods
-inline constexpr int kExitReplayDiffers = 4;
-inline constexpr int kExitLogIncomplete = 5;   // ticks, commands or END_OF_RUN missing
-inline constexpr int kExitLogDamaged = 6;      // framing damaged (truncated, garbage, jumps) or inconsistent
-inline constexpr int kExitTransport = 7;       // socket or log file error
-const char* exit_name(int code);
+/// Exit statuses of reentry_fsw (named in its last stderr line and in --status-json): the
+/// table shared by every process and tool (transport/exit_status.hpp, tools/README.md).
+using transport::exit_name;
+using transport::kExitLinkLoss;        // no usable NAV_STATE for link_timeout_ticks periods
+using transport::kExitLogDamaged;      // framing damaged (truncated, garbage, jumps) or inconsistent
+using transport::kExitLogIncomplete;   // ticks, commands or END_OF_RUN missing
+using transport::kExitNotReplayable;   // a whole log of another mission or of a realtime run
+using transport::kExitOk;
+using transport::kExitReplayDiffers;
+using transport::kExitTransport;       // socket error
+using transport::kExitUsage;
+using transport::kExitWriteFailed;     // a log or the status JSON could not be written whole
 
 /// Converts a navigation message into the Earth-relative state guidance works with.
 using NavConvertFn = Status (*)(const nav_state_t& nav, RelativeState& out, void* ctx);
@@ -61,8 +66,9 @@ class GuidanceNode {
 
   /// Records everything received and sent into `path` (start-up; realtime drops rather than waits).
   bool open_log(const std::string& path, RunMode mode, std::string& error);
-  /// Drains and closes the log (end of run, before the status JSON).
-  void close_log() { log_.close(); }
+  /// Drains and closes the log (end of run, before the status JSON); false when it could not
+  /// be written whole (the reason printed).
+  bool close_log();
 
   /// Live run on the network until END_OF_RUN / STOP (kExitOk) or link loss (kExitLinkLoss):
   /// the safe command is then held and published with the link-loss flag before returning.
@@ -74,12 +80,15 @@ class GuidanceNode {
   /// Prints `identical`, the first differing tick and field, or why the log cannot be
   /// replayed. out_log: the re-run's log (navs, commands, status, plans, END_OF_RUN).
   int run_replay(const std::string& log_path, bool compare, const std::string& out_log, bool allow_unsealed = false);
+  /// The mission's name for the replay's messages (a log of another mission is named as such).
+  void set_mission_name(const std::string& name) { mission_name_ = name; }
 
   /// One received datagram (the live loop, and the in-process fuzz test). May publish.
   void on_datagram(const char* channel, const std::uint8_t* payload, int len);
 
-  /// Write the counters as JSON (end of run, ground tool output).
-  void write_status_json(const std::string& path, int exit_code) const;
+  /// Write the counters as JSON (end of run, ground tool output); false when it could not be
+  /// written (the reason printed).
+  bool write_status_json(const std::string& path, int exit_code) const;
 
   std::int32_t bad_messages() const { return bad_messages_; }
   const guidance_cmd_t& last_cmd() const { return cmd_; }
@@ -106,6 +115,11 @@ class GuidanceNode {
   void publish_heartbeat();
   void publish_safe(double silent_s);
   void note_nav_alive() { last_alive_ns_ = now_ns_; }
+  int run_lockstep(transport::UdpmSocket& net, const LiveOptions& options);
+  int run_realtime(transport::UdpmSocket& net, const LiveOptions& options);
+  bool link_lost(std::int64_t now, std::int64_t since, const LiveOptions& options);
+  int interrupted() const;
+  int replay_commands(const transport::RunLogCheck& check, bool compare, bool keep_going);
 
   exec::Executive& exec_;
   NavConvertFn convert_;
@@ -137,6 +151,8 @@ class GuidanceNode {
   std::int64_t last_heartbeat_ns_ = 0;
   std::int64_t last_tick_answered_ = -1;
   double link_silent_s_ = 0.0;
+  std::string mission_name_ = "the mission";
+  std::int64_t replayed_ = 0;  // commands compared by the replay
 };
 
 }  // namespace reentry::fsw::app

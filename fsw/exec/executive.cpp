@@ -45,9 +45,68 @@ bool Executive::tick_in_window(std::int64_t tick) const {
   return tick > last_tick_ && tick - last_tick_ <= cfg_.nav.max_tick_gap;
 }
 
-NavVerdict Executive::validate(const NavInput& nav) const {
+bool Executive::in_absolute_windows(const RelativeState& s) const {
+  const NavWindows& w = cfg_.nav;
+  return finite_state(s) && s.altitude_m >= w.altitude_min_m && s.altitude_m <= w.altitude_max_m &&
+         s.velocity_mps >= 0.0 && s.velocity_mps <= w.velocity_max_mps &&
+         std::fabs(s.drag_mps2) <= w.specific_force_max_mps2 && std::fabs(s.lift_mps2) <= w.specific_force_max_mps2;
+}
+
+double Executive::gamma_rate_bound_radps(const RelativeState& a, const RelativeState& b) const {
+  // (2.45): gamma' = (L cos(sigma) - (g - V^2/r) cos(gamma)) / V + 2 omega cos(lat) sin(chi).
+  const NavWindows& w = cfg_.nav;
+  const double lift = w.gamma_rate_lift_factor * std::fmax(std::fabs(a.lift_mps2), std::fabs(b.lift_mps2));
+  const double v = std::fmax(w.gamma_rate_speed_min_mps, std::fmin(a.velocity_mps, b.velocity_mps));
+  const double v_max = std::fmax(a.velocity_mps, b.velocity_mps);
+  const double r = std::fmax(1.0, std::fmin(a.radius_m, b.radius_m));
+  return (lift + w.gravity_max_mps2 + v_max * v_max / r) / v + 2.0 * w.earth_rate_radps;
+}
+
+bool Executive::consistent(const RelativeState& from, std::int64_t from_tick, const RelativeState& s,
+                           std::int64_t tick) const {
+  // Rates from `from` (both ticks >= 0 and tick > from_tick: no overflow).
+  const NavWindows& w = cfg_.nav;
+  if (tick <= from_tick || tick - from_tick > w.max_tick_gap) return false;
+  const double elapsed_s = static_cast<double>(tick - from_tick) * dt_s();
+  return std::fabs(s.altitude_m - from.altitude_m) <= w.climb_rate_max_mps * elapsed_s &&
+         std::fabs(s.velocity_mps - from.velocity_mps) <= w.speed_rate_max_mps2 * elapsed_s &&
+         std::fabs(s.flight_path_rad - from.flight_path_rad) <=
+             gamma_rate_bound_radps(from, s) * elapsed_s + w.gamma_tol_rad;
+}
+
+bool Executive::reachable_from_entry(const RelativeState& s, std::int64_t tick) const {
+  const NavWindows& w = cfg_.nav;
+  const EntryEnvelope& e = w.entry;
+  if (!e.known) return true;
+  const double t = static_cast<double>(tick) * dt_s();  // time since the entry interface
+  const double v_max = e.velocity_mps + e.velocity_tol_mps + w.speed_rate_max_mps2 * t;
+  // Great-circle angle between the sample and the entry point (haversine).
+  const double dlat = s.latitude_rad - e.latitude_rad, dlon = s.longitude_rad - e.longitude_rad;
+  const double hav = std::sin(0.5 * dlat) * std::sin(0.5 * dlat) +
+                     std::cos(s.latitude_rad) * std::cos(e.latitude_rad) * std::sin(0.5 * dlon) * std::sin(0.5 * dlon);
+  const double angle_rad = 2.0 * std::asin(std::sqrt(std::fmin(1.0, std::fmax(0.0, hav))));
+  RelativeState entry = s;
+  entry.velocity_mps = e.velocity_mps;
+  entry.radius_m = e.radius_m;
+  entry.lift_mps2 = w.specific_force_max_mps2;  // the most lift the windows allow since the entry
+  const double gamma_rate = gamma_rate_bound_radps(entry, s);
+  // The air gives at most rho V^2 / 2 (C S / m): density grows at most as exp(dh / H_min) below
+  // the entry radius, q as V^2.
+  const double v_ratio = s.velocity_mps / e.velocity_mps;
+  const double force_max = e.specific_force_max_mps2 * v_ratio * v_ratio *
+                           std::exp(std::fmin(700.0, (e.radius_m - s.radius_m) / e.density_scale_height_min_m));
+  const double force = std::hypot(s.drag_mps2, s.lift_mps2);
+  return std::fabs(s.radius_m - e.radius_m) <= e.radius_tol_m + v_max * t &&
+         std::fabs(s.velocity_mps - e.velocity_mps) <= e.velocity_tol_mps + w.speed_rate_max_mps2 * t &&
+         std::fabs(s.flight_path_rad - e.flight_path_rad) <= e.flight_path_tol_rad + gamma_rate * t &&
+         angle_rad <= e.position_tol_rad + v_max * t / e.radius_m && s.energy_Jpkg <= e.energy_max_Jpkg &&
+         force <= force_max;
+}
+
+NavVerdict Executive::validate(const NavInput& nav, Fit* fit) const {
   const NavWindows& w = cfg_.nav;
   const double dt = dt_s();
+  *fit = Fit::kAbsurd;
   // Tick and time: ticks count from 0 at the entry interface and t_s = tick / f, so a sample
   // whose time does not match its tick carries a corrupted tick or time; neither can be trusted.
   if (nav.tick < 0 || nav.tick > w.max_tick) return NavVerdict::kRejectedTick;
@@ -57,24 +116,37 @@ NavVerdict Executive::validate(const NavInput& nav) const {
       std::fabs(nav.state.t_s - static_cast<double>(nav.tick) * dt) > w.time_tolerance_ticks * dt) {
     return NavVerdict::kRejectedTick;
   }
-  if (!tick_in_window(nav.tick)) return NavVerdict::kRejectedTick;
-  // Values: finite and inside the absolute windows.
+  // Values: finite, inside the absolute windows, reachable from the mission's entry state.
   const RelativeState& s = nav.state;
-  if (!nav.values_valid || !finite_state(s)) return NavVerdict::kRejectedValues;
-  if (s.altitude_m < w.altitude_min_m || s.altitude_m > w.altitude_max_m || !(s.velocity_mps >= 0.0) ||
-      s.velocity_mps > w.velocity_max_mps || std::fabs(s.drag_mps2) > w.specific_force_max_mps2 ||
-      std::fabs(s.lift_mps2) > w.specific_force_max_mps2) {
+  const bool values = nav.values_valid && in_absolute_windows(s) && reachable_from_entry(s, nav.tick);
+  if (!tick_in_window(nav.tick)) {
+    // Behind the reference (never a candidate) or too far ahead of it (a candidate when sane).
+    if (values && have_last_nav_ && nav.tick > last_tick_) *fit = Fit::kTooFar;
+    return NavVerdict::kRejectedTick;
+  }
+  if (!values) return NavVerdict::kRejectedValues;
+  // Rates from the last accepted sample: a jump is rejected, the reference is kept.
+  if (have_last_nav_ && !consistent(last_state_, last_tick_, s, nav.tick)) {
+    *fit = Fit::kInconsistent;
     return NavVerdict::kRejectedValues;
   }
-  // Rates from the last accepted sample: a jump is rejected, the reference is kept.
-  if (have_last_nav_) {
-    const double elapsed_s = static_cast<double>(nav.tick - last_tick_) * dt;
-    if (std::fabs(s.altitude_m - last_state_.altitude_m) > w.climb_rate_max_mps * elapsed_s ||
-        std::fabs(s.velocity_mps - last_state_.velocity_mps) > w.speed_rate_max_mps2 * elapsed_s) {
-      return NavVerdict::kRejectedValues;
-    }
-  }
+  *fit = Fit::kFits;
   return NavVerdict::kAccepted;
+}
+
+bool Executive::reacquire(const NavInput& nav, Fit fit) {
+  // A sane sample the reference refuses extends the run of candidates when it is consistent
+  // with the previous one; a long enough run means the reference was wrong: it is replaced.
+  if (fit != Fit::kInconsistent && fit != Fit::kTooFar) return false;
+  if (candidate_run_ > 0 && nav.tick == candidate_tick_) return false;  // the same sample again (republished)
+  const bool extends = candidate_run_ > 0 && consistent(candidate_state_, candidate_tick_, nav.state, nav.tick);
+  candidate_run_ = extends ? candidate_run_ + 1 : 1;
+  candidate_tick_ = nav.tick;
+  candidate_state_ = nav.state;
+  if (candidate_run_ < cfg_.nav.reacquire_samples) return false;
+  candidate_run_ = 0;
+  ++counters_.nav_reacquired;
+  return true;
 }
 
 Status Executive::init(const ExecConfig& cfg, PlanComputer& planner, CommandLaw& law) {
@@ -86,7 +158,16 @@ Status Executive::init(const ExecConfig& cfg, PlanComputer& planner, CommandLaw&
   const NavWindows& w = cfg.nav;
   if (!(w.time_tolerance_ticks > 0.0 && w.time_tolerance_ticks <= 0.5) || w.max_tick_gap < 1 || w.max_tick < 1 ||
       !(w.altitude_max_m > w.altitude_min_m) || !(w.velocity_max_mps > 0.0) || !(w.specific_force_max_mps2 > 0.0) ||
-      !(w.climb_rate_max_mps > 0.0) || !(w.speed_rate_max_mps2 > 0.0)) {
+      !(w.climb_rate_max_mps > 0.0) || !(w.speed_rate_max_mps2 > 0.0) || !(w.gamma_rate_lift_factor >= 1.0) ||
+      !(w.gamma_rate_speed_min_mps > 0.0) || !(w.gravity_max_mps2 > 0.0) || !(w.earth_rate_radps >= 0.0) ||
+      !(w.gamma_tol_rad >= 0.0) || w.reacquire_samples < 2) {
+    return Status::kInvalidInput;
+  }
+  const EntryEnvelope& e = w.entry;
+  if (e.known && (!(e.radius_m > 0.0) || !(e.radius_tol_m >= 0.0) || !(e.velocity_mps > 0.0) ||
+                  !(e.velocity_tol_mps >= 0.0) || !(e.flight_path_tol_rad >= 0.0) || !(e.position_tol_rad >= 0.0) ||
+                  !std::isfinite(e.energy_max_Jpkg) || !(e.specific_force_max_mps2 > 0.0) ||
+                  !(e.density_scale_height_min_m > 0.0) || !std::isfinite(e.flight_path_rad + e.latitude_rad + e.longitude_rad))) {
     return Status::kInvalidInput;
   }
   cfg_ = cfg;
@@ -286,7 +367,10 @@ CycleOutput Executive::step(const NavInput& nav) {
   inline_plan_ns_ = 0;
 
   // 1. Validate the navigation sample.
-  const NavVerdict verdict = validate(nav);
+  Fit fit = Fit::kAbsurd;
+  NavVerdict verdict = validate(nav, &fit);
+  if (verdict == NavVerdict::kAccepted) candidate_run_ = 0;
+  if (reacquire(nav, fit)) verdict = NavVerdict::kAccepted;
   if (verdict == NavVerdict::kDuplicate) {
     ++counters_.duplicate_ticks;
     out.emitted = false;

@@ -45,12 +45,37 @@ enum class NavVerdict : std::int8_t {
                         // or a new tick while a lockstep cycle waits): not answered, nothing adopted
 };
 
+/// The mission's entry interface as the first-sample check sees it (the process layer fills it
+/// from the mission and its dispersions at start-up). A sample with no accepted sample before
+/// it must be reachable from this state in its time since the entry interface (t_s = tick / f):
+/// radius, speed, flight-path angle and position within their tolerances plus what the windows'
+/// rates allow over that time; energy (7.8) at most the entry's (an unpowered vehicle only
+/// loses energy, dE/dt = -D V); the sensed aerodynamic force at most what the air can give at
+/// the sample's radius and speed (density growing at most as exp(dh / H_min) below the entry).
+struct EntryEnvelope {
+  bool known = false;                       // false: a first sample meets the absolute windows only
+  double radius_m = 0.0;                    // entry radius [m] (surface radius at the entry latitude + altitude)
+  double radius_tol_m = 0.0;                // [m], >= 0: Earth shape (sphere or ellipsoid) + navigation error
+  double velocity_mps = 0.0;                // Earth-relative entry speed [m/s], > 0
+  double velocity_tol_mps = 0.0;            // [m/s], >= 0: entry-velocity dispersion + navigation error
+  double flight_path_rad = 0.0;             // entry flight-path angle [rad]
+  double flight_path_tol_rad = 0.0;         // [rad], >= 0: dispersion + navigation error
+  double latitude_rad = 0.0;                // geocentric entry latitude [rad]
+  double longitude_rad = 0.0;               // Earth-fixed entry longitude [rad]
+  double position_tol_rad = 0.0;            // great-circle angle [rad], >= 0: position dispersion + navigation
+  double energy_max_Jpkg = 0.0;             // highest energy (7.8) of a dispersed entry state, margin included
+  double specific_force_max_mps2 = 0.0;     // highest sensed aero force at the entry radius and speed [m/s^2], > 0
+  double density_scale_height_min_m = 4000.0;  // smallest density scale height below the entry interface [m], > 0
+};
+
 /// Plausibility windows every navigation sample must pass before guidance uses it. A sample
 /// outside any window is rejected, never adopted; the rate windows are measured from the last
-/// accepted sample and widen with the ticks since, so one bad message cannot latch the
-/// executive (the next good sample is inside them again). Defaults are far outside any entry
-/// flight (X-33/HORUS/X-38/Orbiter peak at < 4 g, < 8 km/s) and tight enough to reject
-/// corrupted or spoofed samples.
+/// accepted sample and widen with the ticks since. The first sample is judged against the
+/// mission's entry state (EntryEnvelope). A reference that was itself wrong cannot latch the
+/// executive: reacquire_samples consecutive samples that are consistent with each other and
+/// reachable from the entry state, but not with the reference, become the new reference.
+/// Defaults are far outside any entry flight (X-33/HORUS/X-38/Orbiter peak at < 4 g,
+/// < 8 km/s) and tight enough to reject corrupted or spoofed samples.
 struct NavWindows {
   double time_tolerance_ticks = 0.25;     // |t_s - tick / f| bound [ticks], (0, 0.5]: nav time is tick / f
   std::int64_t max_tick_gap = 100;        // largest tick step from the last accepted sample [ticks], >= 1
@@ -61,6 +86,15 @@ struct NavWindows {
   double specific_force_max_mps2 = 490.0; // |drag|, |lift| sensed [m/s^2] (50 g)
   double climb_rate_max_mps = 15000.0;    // |dh/dt| between accepted samples [m/s]
   double speed_rate_max_mps2 = 600.0;     // |dV/dt| between accepted samples [m/s^2] (drag + gravity < 60 g)
+  // Flight-path angle rate (2.45): |gamma'| <= (L + g + V^2/r) / V + 2 omega. Between two
+  // samples L is taken as gamma_rate_lift_factor times the larger sensed lift of the two.
+  double gamma_rate_lift_factor = 2.0;    // [-], >= 1: lift between the samples above both ends
+  double gamma_rate_speed_min_mps = 100.0;  // V floor of the bound [m/s], > 0 (entry flight is faster)
+  double gravity_max_mps2 = 9.9;          // g bound [m/s^2], >= the surface gravity (9.83 at the poles)
+  double earth_rate_radps = 7.292115e-5;  // omega [rad/s]
+  double gamma_tol_rad = 1.0e-3;          // [rad], >= 0: navigation noise on gamma
+  int reacquire_samples = 3;              // consistent samples that replace a wrong reference, >= 2
+  EntryEnvelope entry;
 };
 
 /// The planner, as seen by the executive. Called on the worker thread (or inline in
@@ -144,6 +178,7 @@ struct ExecCounters {
   int invalid_nav = 0;            // every rejected sample (both verdicts below)
   int nav_rejected_values = 0;    // of which: values outside a window (answered with the held command)
   int nav_rejected_tick = 0;      // of which: tick / time implausible (not answered)
+  int nav_reacquired = 0;         // references replaced by a consistent run of samples (a wrong one was held)
   int duplicate_ticks = 0;
   int skipped_ticks = 0;
   int plans_adopted = 0;
@@ -207,7 +242,14 @@ class Executive {
   };
 
   static bool finite_state(const RelativeState& s);
-  NavVerdict validate(const NavInput& nav) const;
+  /// How a sample that passed its tick and time checks compares with the reference.
+  enum class Fit : std::int8_t { kFits = 0, kAbsurd = 1, kInconsistent = 2, kTooFar = 3 };
+  NavVerdict validate(const NavInput& nav, Fit* fit) const;
+  bool in_absolute_windows(const RelativeState& s) const;
+  bool reachable_from_entry(const RelativeState& s, std::int64_t tick) const;
+  bool consistent(const RelativeState& from, std::int64_t from_tick, const RelativeState& s, std::int64_t tick) const;
+  double gamma_rate_bound_radps(const RelativeState& a, const RelativeState& b) const;
+  bool reacquire(const NavInput& nav, Fit fit);
   CycleOutput held_output(const NavInput& nav, NavVerdict verdict);
   CycleOutput finish_cycle(const NavInput& nav, CycleOutput& out, std::int64_t t_start_ns);
   void worker_loop();
@@ -261,6 +303,10 @@ class Executive {
   std::int64_t last_tick_ = 0;     // last accepted tick (reference of the windows)
   std::int64_t last_seen_tick_ = -1;  // highest tick accepted or answered (skip accounting)
   RelativeState last_state_;       // last accepted state
+  // Re-acquisition: the run of consecutive, mutually consistent samples the reference refused.
+  int candidate_run_ = 0;
+  std::int64_t candidate_tick_ = 0;
+  RelativeState candidate_state_;
   ExecCounters counters_;
   // Lockstep plan wait: the accepted sample whose cycle waits, and the cycle's time so far.
   bool awaiting_ = false;

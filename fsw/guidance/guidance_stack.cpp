@@ -1,5 +1,8 @@
 #include "guidance/guidance_stack.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "guidance/alpha_profile_source.hpp"
 #include "guidance/mission_adapter.hpp"
 #include "reentry/config/mission.hpp"
@@ -59,6 +62,50 @@ exec::CommandLaw& GuidanceStack::command_law() {
   return *law;
 }
 
+namespace {
+
+/// The mission's entry interface as the executive's first-sample check sees it: the entry
+/// state, its dispersions (the wider of the reference and stress sets: the guidance does not
+/// know which campaign flies it) and a navigation allowance; the sensed force bound from the
+/// on-board density at the entry altitude (x3 for the model, times the density dispersion) and
+/// the largest force coefficient of the aero tables at the lightest dispersed mass.
+exec::EntryEnvelope entry_envelope(const config::Mission& m, const OnboardModels& models) {
+  const config::Dispersions& a = m.dispersions;
+  const config::Dispersions& b = m.has_stress_dispersions ? m.stress_dispersions : m.dispersions;
+  auto widest = [](const config::Dispersion& x, const config::Dispersion& y) { return std::max(x.value, y.value); };
+  exec::EntryEnvelope e;
+  e.known = true;
+  e.latitude_rad = m.entry.latitude_rad;
+  e.longitude_rad = m.entry.longitude_rad;
+  e.radius_m = surface_radius_m(m.entry.latitude_rad) + m.entry.altitude_m;
+  e.radius_tol_m = 1000.0 + kEarthRadius_m * kEarthFlattening;  // navigation + sphere or ellipsoid
+  e.velocity_mps = m.entry.velocity_mps;
+  e.velocity_tol_mps = widest(a.entry_velocity_mps, b.entry_velocity_mps) + 20.0;
+  e.flight_path_rad = m.entry.flight_path_rad;
+  e.flight_path_tol_rad = widest(a.entry_flight_path_rad, b.entry_flight_path_rad) + 0.005;
+  e.position_tol_rad = std::sqrt(2.0) * widest(a.entry_position_rad, b.entry_position_rad) + 0.001;
+  const double e_entry =
+      specific_energy_Jpkg(e.radius_m + e.radius_tol_m, e.velocity_mps + e.velocity_tol_mps);  // (7.8)
+  e.energy_max_Jpkg = e_entry + 0.02 * std::fabs(e_entry);  // J2 and Earth-rate work on the relative energy
+  double coeff_max = 0.0;
+  const auto& cl = m.vehicle.aero.cl.values;
+  const auto& cd = m.vehicle.aero.cd.values;
+  const double cl_scale = 1.0 + widest(a.cl_scale, b.cl_scale), cd_scale = 1.0 + widest(a.cd_scale, b.cd_scale);
+  for (std::size_t i = 0; i < cl.size() && i < cd.size(); ++i)
+    coeff_max = std::max(coeff_max, std::hypot(cl[i] * cl_scale, cd[i] * cd_scale));
+  const double density_scale =
+      3.0 * (1.0 + std::max(a.density_scale.value, b.density_scale.value) +
+             std::max(a.density_perturbation, b.density_perturbation));
+  const double mass_min_kg = m.vehicle.mass_kg * (1.0 - widest(a.mass_scale, b.mass_scale));
+  const double rho_kgpm3 = models.atmosphere().density_kgpm3(m.entry.altitude_m) * density_scale;
+  // At least 0.5 m/s^2: accelerometer bias and noise at the entry interface.
+  e.specific_force_max_mps2 = std::max(0.5, 0.5 * rho_kgpm3 * e.velocity_mps * e.velocity_mps * coeff_max *
+                                                m.vehicle.reference_area_m2 / mass_min_kg);
+  return e;
+}
+
+}  // namespace
+
 std::string GuidanceStack::create(const config::Mission& mission, exec::PlanMode mode) {
   // A planned alpha profile is planned here, at start-up, on a copy of the mission.
   const config::Mission* source = &mission;
@@ -108,6 +155,7 @@ std::string GuidanceStack::create(const config::Mission& mission, exec::PlanMode
     config.replan_floor_energy_Jpkg = law->tracker.terminal_energy_Jpkg();
   }
   if (!err.empty()) return err;
+  config.nav.entry = entry_envelope(m, g.models);
   st = executive->init(config, plan_computer(), command_law());
   if (st != Status::kOk) return std::string("executive init (guidance timing parameters): ") + to_string(st);
   return {};

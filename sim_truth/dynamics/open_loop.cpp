@@ -10,10 +10,12 @@
 #include <ostream>
 #include <sstream>
 
+#include "physics/earth_constants.hpp"
+
 namespace reentry::truth {
 
 namespace {
-constexpr double kDeg = M_PI / 180.0;
+using physics::kRadPerDeg;
 
 // Command step of open-loop flights: the mission's GNC tick (10 Hz when the mission gives none).
 double gnc_tick_s(const Simulator& sim) {
@@ -105,8 +107,8 @@ bool load_open_loop_profile(const std::string& path, OpenLoopProfile* p, std::st
         return fail(line_no, "first column must be strictly monotonic (t_s increasing): '" + f[0] + "'");
     }
     p->x.push_back(v[0]);
-    p->alpha_rad.push_back(v[1] * kDeg);
-    p->sigma_rad.push_back(v[2] * kDeg);
+    p->alpha_rad.push_back(v[1] * kRadPerDeg);
+    p->sigma_rad.push_back(v[2] * kRadPerDeg);
   }
   if (!have_header) return fail(0, "empty file (no header)");
   if (p->x.empty()) return fail(0, "no data rows");
@@ -167,9 +169,9 @@ void write_trajectory_row(std::ostream& out, const TruthSample& s) {
   char buf[640];
   std::snprintf(buf, sizeof(buf),
                 "%.6f,%.4f,%.4f,%.9f,%.9f,%.6f,%.8f,%.8f,%.6f,%.9e,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.6f,%.6f\n",
-                s.t_s, s.h_m, s.r_m, s.lat_rad / kDeg, s.lon_rad / kDeg, s.V_mps, s.gamma_rad / kDeg, s.chi_rad / kDeg,
+                s.t_s, s.h_m, s.r_m, s.lat_rad / kRadPerDeg, s.lon_rad / kRadPerDeg, s.V_mps, s.gamma_rad / kRadPerDeg, s.chi_rad / kRadPerDeg,
                 s.mach, s.rho_kgpm3, s.q_Pa, s.qdot_Wpm2, s.Q_Jpm2, s.n_g, s.D_mps2, s.L_mps2, s.E_Jpkg,
-                s.alpha_rad / kDeg, s.sigma_rad / kDeg);
+                s.alpha_rad / kRadPerDeg, s.sigma_rad / kRadPerDeg);
   out << buf;
 }
 
@@ -181,11 +183,11 @@ std::string summary_json(const RunSummary& r, const Simulator& sim) {
   j["event"] = to_string(r.event);
   if (!r.message.empty()) j["message"] = r.message;
   j["final"] = {{"t_s", f.t_s},           {"h_m", f.h_m},
-                {"lat_deg", f.lat_rad / kDeg}, {"lon_deg", f.lon_rad / kDeg},
-                {"V_mps", f.V_mps},       {"gamma_deg", f.gamma_rad / kDeg},
-                {"chi_deg", f.chi_rad / kDeg}, {"mach", f.mach},
+                {"lat_deg", f.lat_rad / kRadPerDeg}, {"lon_deg", f.lon_rad / kRadPerDeg},
+                {"V_mps", f.V_mps},       {"gamma_deg", f.gamma_rad / kRadPerDeg},
+                {"chi_deg", f.chi_rad / kRadPerDeg}, {"mach", f.mach},
                 {"E_Jpkg", f.E_Jpkg},     {"Q_Jpm2", f.Q_Jpm2},
-                {"range_to_taem_m", f.range_to_taem_m}, {"heading_to_taem_deg", f.heading_to_taem_rad / kDeg}};
+                {"range_to_taem_m", f.range_to_taem_m}, {"heading_to_taem_deg", f.heading_to_taem_rad / kRadPerDeg}};
   j["max"] = {{"qdot_Wpm2", r.maxima.qdot_Wpm2}, {"qdot_t_s", r.maxima.qdot_t_s},
               {"n_g", r.maxima.n_g},             {"n_g_t_s", r.maxima.n_g_t_s},
               {"q_Pa", r.maxima.q_Pa},           {"q_t_s", r.maxima.q_t_s},
@@ -200,11 +202,11 @@ std::string summary_json(const RunSummary& r, const Simulator& sim) {
   if (st.dispersion.dispersed) {
     const DispersionDraw& d = st.dispersion;
     j["dispersion"] = {{"seed", d.seed},
-                       {"entry_gamma_deg", d.entry_flight_path_rad / kDeg},
-                       {"entry_heading_deg", d.entry_heading_rad / kDeg},
+                       {"entry_gamma_deg", d.entry_flight_path_rad / kRadPerDeg},
+                       {"entry_heading_deg", d.entry_heading_rad / kRadPerDeg},
                        {"entry_velocity_mps", d.entry_velocity_mps},
-                       {"entry_lat_deg", d.entry_latitude_rad / kDeg},
-                       {"entry_lon_deg", d.entry_longitude_rad / kDeg},
+                       {"entry_lat_deg", d.entry_latitude_rad / kRadPerDeg},
+                       {"entry_lon_deg", d.entry_longitude_rad / kRadPerDeg},
                        {"density_scale", d.density_scale},
                        {"cl_scale", d.cl_scale},
                        {"cd_scale", d.cd_scale},

@@ -52,7 +52,20 @@ class PointModel {
   /// the energy (7.8), latitude/longitude and the load factor (3.7).
   template <class T>
   PointOutputs<T> evaluate(const T& t, const scalar::Vec3<T>& r_I, const scalar::Vec3<T>& v_I, const T& alpha,
-                           const T& sigma, bool full) const;
+                           const T& sigma, bool full) const {
+    const auto tables = [this](const T& a, const T& m, const T& q) {
+      return aero->coefficients(a, m, q, trim, cl_scale, cd_scale);
+    };
+    return evaluate_with(tables, t, r_I, v_I, alpha, sigma, full);
+  }
+
+  /// evaluate() with the aerodynamic coefficients from `aero_at(alpha, mach, q)` (returning
+  /// AeroCoefficientsT<T>, scales included) instead of this model's tables; everything else is
+  /// this model. The trajectory optimizer passes its C2 fits of these very tables
+  /// (tools/optimizer/smooth_models.hpp); the simulator always flies the tables.
+  template <class T, class AeroAt>
+  PointOutputs<T> evaluate_with(const AeroAt& aero_at, const T& t, const scalar::Vec3<T>& r_I,
+                                const scalar::Vec3<T>& v_I, const T& alpha, const T& sigma, bool full) const;
 
   /// Energy (7.8) with the Earth-relative speed, E = |v_I - omega x r_I|^2 / 2 - mu / r + mu / R_eq:
   /// the TAEM event's variable.
@@ -72,9 +85,9 @@ class PointModel {
   }
 };
 
-template <class T>
-PointOutputs<T> PointModel::evaluate(const T& t, const scalar::Vec3<T>& r_I, const scalar::Vec3<T>& v_I, const T& alpha,
-                                     const T& sigma, bool full) const {
+template <class T, class AeroAt>
+PointOutputs<T> PointModel::evaluate_with(const AeroAt& aero_at, const T& t, const scalar::Vec3<T>& r_I,
+                                          const scalar::Vec3<T>& v_I, const T& alpha, const T& sigma, bool full) const {
   using Vec3 = scalar::Vec3<T>;
   using Mat3 = scalar::Mat3<T>;
   using std::atan2;
@@ -111,7 +124,7 @@ PointOutputs<T> PointModel::evaluate(const T& t, const scalar::Vec3<T>& r_I, con
   d.alpha = alpha;
   d.sigma = sigma;
 
-  const auto c = aero->coefficients(d.alpha, d.mach, d.q, trim, cl_scale, cd_scale);
+  const auto c = aero_at(d.alpha, d.mach, d.q);
   d.flap = c.flap_rad;
   d.elevon = c.elevon_rad;
   const T lift_N = d.q * area_m2 * c.cl;  // (2.21)

@@ -1,5 +1,7 @@
 #include "dynamics/simulator.hpp"
 
+#include "reentry/config/environment_files.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -121,36 +123,46 @@ Simulator::~Simulator() = default;
 
 std::unique_ptr<Simulator> Simulator::create(const config::Mission& mission, const SimOverrides& ov,
                                              std::string* error) {
-  auto fail = [&](const std::string& msg) -> std::unique_ptr<Simulator> {
-    if (error) *error = msg;
-    return nullptr;
-  };
   std::unique_ptr<Simulator> sim(new Simulator());
   sim->mission_ = mission;
-  sim->models_ = std::make_unique<Models>();
-  sim->attitude_ = std::make_unique<Attitude>();
-  Models& m = *sim->models_;
-  ResolvedSimSettings& st = sim->settings_;
-  const config::SimParams& cfg = mission.sim;
-  const DispersionDraw& disp = ov.dispersion;
-  st.dispersion = disp;
+  // The overridden integration settings are the mission's for this run: the loader's rules
+  // (config::check_mission) judge the mission as flown, so both accept the same missions.
+  config::SimParams& cfg = sim->mission_.sim;
+  if (ov.rel_tol > 0.0) cfg.rel_tol = ov.rel_tol;
+  if (ov.abs_tol_position_m > 0.0) cfg.abs_tol_position_m = ov.abs_tol_position_m;
+  if (ov.abs_tol_velocity_mps > 0.0) cfg.abs_tol_velocity_mps = ov.abs_tol_velocity_mps;
+  if (ov.time_limit_s > 0.0) cfg.time_limit_s = ov.time_limit_s;
+  std::string err = config::check_mission(sim->mission_);
+  if (err.empty()) err = sim->resolve_settings(ov);
+  if (err.empty()) err = sim->build_models(ov);
+  if (err.empty()) err = sim->set_entry_state(ov.dispersion);
+  if (!err.empty()) {
+    if (error) *error = err;
+    return nullptr;
+  }
+  return sim;
+}
 
-  // --- resolve choices -----------------------------------------------------------------------
+std::string Simulator::resolve_settings(const SimOverrides& ov) {
+  const config::SimParams& cfg = mission_.sim;
+  const config::Mission& mission = mission_;
+  ResolvedSimSettings& st = settings_;
+  st.dispersion = ov.dispersion;
   GravityChoice g = ov.gravity;
   if (g == GravityChoice::kFromConfig && !parse_gravity(cfg.gravity, &g))
-    return fail("unknown sim.gravity '" + cfg.gravity + "' (central, j2j4, sh20)");
+    return "unknown sim.gravity '" + cfg.gravity + "' (central, j2j4, sh20)";
   AtmosphereChoice a = ov.atmosphere;
   if (a == AtmosphereChoice::kFromConfig && !parse_atmosphere(cfg.atmosphere, &a))
-    return fail("unknown sim.atmosphere '" + cfg.atmosphere + "' (us76, exponential)");
+    return "unknown sim.atmosphere '" + cfg.atmosphere + "' (us76, exponential)";
   ShapeChoice sh = ov.shape;
   if (sh == ShapeChoice::kFromConfig && !parse_shape(cfg.shape, &sh))
-    return fail("unknown sim.shape '" + cfg.shape + "' (sphere, oblate)");
+    return "unknown sim.shape '" + cfg.shape + "' (sphere, oblate)";
   IntegratorChoice in = ov.integrator;
   if (in == IntegratorChoice::kFromConfig && !parse_integrator(cfg.integrator, &in))
-    return fail("unknown sim.integrator '" + cfg.integrator + "' (rkf56, rkf78)");
+    return "unknown sim.integrator '" + cfg.integrator + "' (rkf56, rkf78)";
   AttitudeChoice at = ov.attitude;
   if (at == AttitudeChoice::kFromConfig && !parse_attitude(cfg.attitude, &at))
-    return fail("unknown sim.attitude '" + cfg.attitude + "' (ideal, lag)");
+    return "unknown sim.attitude '" + cfg.attitude + "' (ideal, lag)";
   const bool wind_on = ov.wind == WindChoice::kFromConfig ? cfg.wind : ov.wind == WindChoice::kOn;
 
   st.gravity = g == GravityChoice::kCentral ? "central" : g == GravityChoice::kJ2J4 ? "j2j4" : "sh20";
@@ -159,39 +171,50 @@ std::unique_ptr<Simulator> Simulator::create(const config::Mission& mission, con
   st.integrator = in == IntegratorChoice::kRkf56 ? "rkf56" : "rkf78";
   st.attitude = at == AttitudeChoice::kIdeal ? "ideal" : "lag";
   st.wind = wind_on;
-  st.rel_tol = ov.rel_tol > 0.0 ? ov.rel_tol : cfg.rel_tol;
-  st.abs_tol_position_m = ov.abs_tol_position_m > 0.0 ? ov.abs_tol_position_m : cfg.abs_tol_position_m;
-  st.abs_tol_velocity_mps = ov.abs_tol_velocity_mps > 0.0 ? ov.abs_tol_velocity_mps : cfg.abs_tol_velocity_mps;
+  st.rel_tol = cfg.rel_tol;
+  st.abs_tol_position_m = cfg.abs_tol_position_m;
+  st.abs_tol_velocity_mps = cfg.abs_tol_velocity_mps;
   st.abs_tol_heat_Jpm2 = 1.0;
-  st.time_limit_s = ov.time_limit_s > 0.0 ? ov.time_limit_s : cfg.time_limit_s;
+  st.time_limit_s = cfg.time_limit_s;
   st.attitude_time_constant_s = cfg.attitude_time_constant_s;
   st.alpha_rate_max_radps = mission.constraints.alpha_rate_max_radps;
   st.sigma_rate_max_radps = mission.constraints.sigma_rate_max_radps;
   if (!(st.rel_tol > 0.0) || !(st.abs_tol_position_m > 0.0) || !(st.abs_tol_velocity_mps > 0.0))
-    return fail("integration tolerances must be positive");
-  if (!(st.time_limit_s > 0.0)) return fail("sim.time_limit_s must be positive");
+    return "integration tolerances must be positive";
+  if (!(st.time_limit_s > 0.0)) return "sim.time_limit_s must be positive";
 
-  // --- models --------------------------------------------------------------------------------
+  return {};
+}
+
+std::string Simulator::build_models(const SimOverrides& ov) {
+  const config::SimParams& cfg = mission_.sim;
+  const config::Mission& mission = mission_;
+  ResolvedSimSettings& st = settings_;
+  const DispersionDraw& disp = ov.dispersion;
+  models_ = std::make_unique<Models>();
+  attitude_ = std::make_unique<Attitude>();
+  Models& m = *models_;
+  const bool wind_on = st.wind;
   std::string err;
-  m.shape = sh == ShapeChoice::kSphere ? ShapeModel::kSphere : ShapeModel::kOblate;
-  const GravityModel gm = g == GravityChoice::kCentral ? GravityModel::kCentral
-                          : g == GravityChoice::kJ2J4  ? GravityModel::kJ2J4
-                                                       : GravityModel::kSphericalHarmonics;
-  m.gravity = Gravity::create(gm, mission.environment.gravity_coefficients, 20, &err);
-  if (!m.gravity) return fail("gravity: " + err);
-  const AtmosphereModel am = a == AtmosphereChoice::kUS76 ? AtmosphereModel::kUS76 : AtmosphereModel::kExponential;
+  m.shape = st.shape == "sphere" ? ShapeModel::kSphere : ShapeModel::kOblate;
+  const GravityModel gm = st.gravity == "central" ? GravityModel::kCentral
+                          : st.gravity == "j2j4"  ? GravityModel::kJ2J4
+                                                  : GravityModel::kSphericalHarmonics;
+  m.gravity = Gravity::create(gm, mission.environment.gravity_coefficients, config::kGravityFileDegree, &err);
+  if (!m.gravity) return "gravity: " + err;
+  const AtmosphereModel am = st.atmosphere == "us76" ? AtmosphereModel::kUS76 : AtmosphereModel::kExponential;
   m.atmosphere = Atmosphere::create(am, mission.environment.us76_table, &err);
-  if (!m.atmosphere) return fail("atmosphere: " + err);
+  if (!m.atmosphere) return "atmosphere: " + err;
   if (disp.dispersed)
     m.atmosphere->set_density_dispersion(disp.density_scale, disp.density_perturbation, disp.density_correlation_m,
                                          disp.density_seed);
   if (wind_on) {
     m.wind = Wind::create(mission.environment.wind_profile, &err);
-    if (!m.wind) return fail("wind: " + err);
+    if (!m.wind) return "wind: " + err;
     m.wind->set_scale(disp.wind_scale);
   }
   m.aero = Aerodynamics::create(mission.vehicle.aero, &err);
-  if (!m.aero) return fail("aerodynamics: " + err);
+  if (!m.aero) return "aerodynamics: " + err;
   st.trim = (ov.trim < 0 ? cfg.trim : ov.trim == 1) && !mission.vehicle.aero.cm.empty();
   m.trim = st.trim;
   m.cl_scale = disp.cl_scale;
@@ -202,9 +225,9 @@ std::unique_ptr<Simulator> Simulator::create(const config::Mission& mission, con
   m.heating = mission.vehicle.heating_model;
   st.mass_kg = m.mass_kg;
   if (!(m.mass_kg > 0.0) || !(m.area_m2 > 0.0) || !(m.nose_radius_m > 0.0))
-    return fail("vehicle mass, reference area and nose radius must be positive");
+    return "vehicle mass, reference area and nose radius must be positive";
 
-  m.method = in == IntegratorChoice::kRkf56 ? numerics::RkfMethod::kRkf56 : numerics::RkfMethod::kRkf78;
+  m.method = st.integrator == "rkf56" ? numerics::RkfMethod::kRkf56 : numerics::RkfMethod::kRkf78;
   for (int i = 0; i < kStates; ++i) m.tol.rel[i] = st.rel_tol;
   for (int i = 0; i < 3; ++i) {
     m.tol.abs[i] = st.abs_tol_position_m;
@@ -212,7 +235,14 @@ std::unique_ptr<Simulator> Simulator::create(const config::Mission& mission, con
   }
   m.tol.abs[6] = st.abs_tol_heat_Jpm2;
 
-  // --- entry state: spherical, Earth-relative -> inertial Cartesian (I = R at t = 0) ------------
+  return {};
+}
+
+std::string Simulator::set_entry_state(const DispersionDraw& disp) {
+  const config::Mission& mission = mission_;
+  Models& m = *models_;
+  ResolvedSimSettings& st = settings_;
+  // Spherical, Earth-relative -> inertial Cartesian (I = R at t = 0).
   const config::SphericalState& e = mission.entry;
   const double lat = e.latitude_rad + disp.entry_latitude_rad;
   const double lon = e.longitude_rad + disp.entry_longitude_rad;
@@ -220,7 +250,7 @@ std::unique_ptr<Simulator> Simulator::create(const config::Mission& mission, con
   const double gam = e.flight_path_rad + disp.entry_flight_path_rad;
   const double chi = e.heading_rad + disp.entry_heading_rad;
   if (!(e.altitude_m > 0.0) || !(V > 0.0) || std::fabs(lat) >= 0.5 * M_PI)
-    return fail("entry state invalid (altitude and velocity must be positive, |latitude| < 90 deg)");
+    return "entry state invalid (altitude and velocity must be positive, |latitude| < 90 deg)";
   const Vec3 u_r(std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon), std::sin(lat));
   double r = EarthConstants::kEquatorialRadius_m + e.altitude_m;
   for (int it = 0; it < 20; ++it) {  // radius whose altitude above the chosen shape is h_entry
@@ -234,11 +264,11 @@ std::unique_ptr<Simulator> Simulator::create(const config::Mission& mission, con
   const Vec3 v_R = C_VR.transpose() * v_V;
   const Vec3 v_I = v_R + kOmegaVec.cross(r_R);  // (transport theorem at t = 0)
   for (int i = 0; i < 3; ++i) {
-    sim->y_[i] = r_R[i];
-    sim->y_[3 + i] = v_I[i];
+    y_[i] = r_R[i];
+    y_[3 + i] = v_I[i];
   }
-  sim->y_[6] = 0.0;
-  sim->t_s_ = 0.0;
+  y_[6] = 0.0;
+  t_s_ = 0.0;
 
   const double mu = EarthConstants::kMu_m3ps2, Re = EarthConstants::kEquatorialRadius_m;
   // Energy of the TAEM state itself: its speed at its altitude above the chosen shape over the
@@ -247,21 +277,21 @@ std::unique_ptr<Simulator> Simulator::create(const config::Mission& mission, con
   const double r_taem = radius_at_altitude_m(mission.taem.latitude_rad, mission.taem.altitude_m, m.shape);
   st.E_taem_Jpkg = 0.5 * mission.taem.velocity_mps * mission.taem.velocity_mps - mu / r_taem + mu / Re;
   st.skip_out_altitude_m = e.altitude_m + kSkipOutMargin_m;
-  sim->E_entry_Jpkg_ = 0.5 * V * V - mu / r + mu / Re;
+  E_entry_Jpkg_ = 0.5 * V * V - mu / r + mu / Re;
 
   // Hold the entry attitude of the mission's alpha profile until the first command.
   const double alpha0 = mission.alpha_profile.y.empty() ? 0.0 : mission.alpha_profile.y.back();
-  Attitude& att = *sim->attitude_;
+  Attitude& att = *attitude_;
   att.alpha.x0 = att.alpha.cmd = alpha0;
   att.sigma.x0 = att.sigma.cmd = 0.0;
-  sim->start_segment();
+  start_segment();
 
   // An entry state already beyond an event ends the run at once.
-  const auto g0 = sim->event_functions(0.0, sim->y_);
-  if (g0[0] <= 0.0) sim->event_ = SimEvent::kTaemEnergy;
-  else if (g0[1] <= 0.0) sim->event_ = SimEvent::kGroundImpact;
-  sim->update_maxima(sim->sample());
-  return sim;
+  const auto g0 = event_functions(0.0, y_);
+  if (g0[0] <= 0.0) event_ = SimEvent::kTaemEnergy;
+  else if (g0[1] <= 0.0) event_ = SimEvent::kGroundImpact;
+  update_maxima(sample());
+  return {};
 }
 
 void Simulator::start_segment() {
@@ -326,6 +356,44 @@ std::array<double, 4> Simulator::event_functions(double t, const State& y) const
   return {E - settings_.E_taem_Jpkg, h, settings_.skip_out_altitude_m - h, settings_.time_limit_s - t};
 }
 
+int Simulator::earliest_event(double h, const std::array<double, 4>& g_new, double* tau_fired, State* y_fired) const {
+  const numerics::EmbeddedRungeKutta<kStates> rk(models_->method);
+  auto f = [this](double t, const State& y, State& dydt) { derivatives(t, y, dydt); };
+  const Models& m = *models_;
+  int fired = -1;
+  // Re-integration from the last accepted state over tau in (0, h]: one step of length tau,
+  // which is shorter than the accepted step (split further only if the error test fails).
+  const double t0 = t_s_;
+  const State y0 = y_;
+  auto propagate = [&](double tau) {
+    State y = y0;
+    double done = 0.0, h_try = tau;
+    for (int attempt = 0; attempt < 64 && done < tau; ++attempt) {
+      const double h_use = std::min(h_try, tau - done);
+      const auto sub = rk.step(f, t0 + done, y, h_use, m.tol);
+      if (sub.accepted) {
+        y = sub.y;
+        done = (h_use == tau - done) ? tau : done + h_use;
+      }
+      h_try = sub.h_next;
+    }
+    return y;
+  };
+  for (int k = 0; k < 3; ++k) {  // 0: TAEM energy, 1: ground, 2: skip-out
+    if (g_new[k] > 0.0) continue;
+    auto g_of_tau = [&](double tau) { return event_functions(t0 + tau, propagate(tau))[k]; };
+    const double x_tol = 1e-10 * std::max(1.0, std::fabs(t0));
+    const auto root = numerics::brent(g_of_tau, 0.0, h, x_tol, 100);
+    const double tau = root.status == numerics::NumStatus::kOk ? root.x : h;
+    if (tau < *tau_fired) {
+      *tau_fired = tau;
+      fired = k;
+      *y_fired = propagate(tau);
+    }
+  }
+  return fired;
+}
+
 SimEvent Simulator::advance_to(double t_target) {
   if (event_ != SimEvent::kNone) return event_;
   const auto wall0 = std::chrono::steady_clock::now();
@@ -362,39 +430,9 @@ SimEvent Simulator::advance_to(double t_target) {
       break;
     }
     const auto g_new = event_functions(t_new, step.y);
-    int fired = -1;
     double tau_fired = kInf;
     State y_fired{};
-    // Re-integration from the last accepted state over tau in (0, h]: one step of length tau,
-    // which is shorter than the accepted step (split further only if the error test fails).
-    const double t0 = t_s_;
-    const State y0 = y_;
-    auto propagate = [&](double tau) {
-      State y = y0;
-      double done = 0.0, h_try = tau;
-      for (int attempt = 0; attempt < 64 && done < tau; ++attempt) {
-        const double h_use = std::min(h_try, tau - done);
-        const auto sub = rk.step(f, t0 + done, y, h_use, m.tol);
-        if (sub.accepted) {
-          y = sub.y;
-          done = (h_use == tau - done) ? tau : done + h_use;
-        }
-        h_try = sub.h_next;
-      }
-      return y;
-    };
-    for (int k = 0; k < 3; ++k) {  // 0: TAEM energy, 1: ground, 2: skip-out
-      if (g_new[k] > 0.0) continue;
-      auto g_of_tau = [&](double tau) { return event_functions(t0 + tau, propagate(tau))[k]; };
-      const double x_tol = 1e-10 * std::max(1.0, std::fabs(t0));
-      const auto root = numerics::brent(g_of_tau, 0.0, h, x_tol, 100);
-      const double tau = root.status == numerics::NumStatus::kOk ? root.x : h;
-      if (tau < tau_fired) {
-        tau_fired = tau;
-        fired = k;
-        y_fired = propagate(tau);
-      }
-    }
+    const int fired = earliest_event(h, g_new, &tau_fired, &y_fired);
     if (fired >= 0) {
       t_s_ = t_s_ + tau_fired;
       y_ = y_fired;

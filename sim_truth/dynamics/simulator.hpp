@@ -161,9 +161,16 @@ class Simulator {
   void attitude_at(double t, double* alpha_rad, double* sigma_rad) const;
   double next_attitude_breakpoint(double after_t) const;
   void start_segment();
+  // Steps of create(): "" or what is wrong.
+  std::string resolve_settings(const SimOverrides& ov);
+  std::string build_models(const SimOverrides& ov);
+  std::string set_entry_state(const DispersionDraw& disp);
   void update_maxima(const TruthSample& s);
   // Event functions: negative when the event has happened.
   std::array<double, 4> event_functions(double t, const State& y) const;
+  /// The earliest event whose function is <= 0 at the end of the accepted step of length h
+  /// from (t_s_, y_): -1 when none, else its index with its time offset and state.
+  int earliest_event(double h, const std::array<double, 4>& g_new, double* tau_fired, State* y_fired) const;
 
   config::Mission mission_;
   ResolvedSimSettings settings_;

@@ -1,11 +1,10 @@
 #include "environment/atmosphere.hpp"
 
 #include "environment/interpolation.hpp"
+#include "reentry/config/environment_files.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <random>
-#include <sstream>
 
 namespace reentry::truth {
 namespace {
@@ -20,42 +19,17 @@ std::optional<Atmosphere> Atmosphere::create(AtmosphereModel model, const std::s
   Atmosphere a;
   a.model_ = model;
   if (model == AtmosphereModel::kExponential) return a;
-  std::ifstream in(us76_table_file);
-  if (!in) {
-    set_error(error, us76_table_file + ": cannot open");
+  config::AtmosphereTable table;
+  const std::string err = config::read_atmosphere_table(us76_table_file, table);
+  if (!err.empty()) {
+    set_error(error, err);
     return std::nullopt;
   }
-  std::string line;
-  int line_no = 0;
-  std::vector<double> rho, p;
-  while (std::getline(in, line)) {
-    ++line_no;
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '%') continue;
-    std::istringstream ls(line);
-    double h = 0.0, d = 0.0, pr = 0.0, t = 0.0;
-    const std::string where = us76_table_file + ":" + std::to_string(line_no) + ": ";
-    if (!(ls >> h >> d >> pr >> t)) {
-      set_error(error, where + "expected 'altitude density pressure temperature', got '" + line + "'");
-      return std::nullopt;
-    }
-    if (!std::isfinite(h) || !(d > 0.0) || !(pr > 0.0) || !(t > 0.0) || !std::isfinite(d) || !std::isfinite(pr) ||
-        !std::isfinite(t)) {
-      set_error(error, where + "density, pressure and temperature must be finite and positive, got '" + line + "'");
-      return std::nullopt;
-    }
-    if (!a.h_m_.empty() && !(h > a.h_m_.back())) {
-      set_error(error, where + "altitude " + std::to_string(h) + " m not strictly increasing");
-      return std::nullopt;
-    }
-    a.h_m_.push_back(h);
-    a.ln_rho_.push_back(std::log(d));
-    a.ln_p_.push_back(std::log(pr));
-    a.t_K_.push_back(t);
-  }
-  if (a.h_m_.size() < 3) {
-    set_error(error, us76_table_file + ": fewer than 3 data rows");
-    return std::nullopt;
+  for (std::size_t i = 0; i < table.h_m.size(); ++i) {
+    a.h_m_.push_back(table.h_m[i]);
+    a.ln_rho_.push_back(std::log(table.density_kgpm3[i]));
+    a.ln_p_.push_back(std::log(table.pressure_Pa[i]));
+    a.t_K_.push_back(table.temperature_K[i]);
   }
   // Density and pressure fall off exponentially: a cubic spline of the values would
   // overshoot and could go negative between nodes; a spline of the logarithm interpolates

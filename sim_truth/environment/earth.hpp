@@ -6,14 +6,15 @@
 #include <cmath>
 
 #include "environment/scalar.hpp"
+#include "physics/earth_constants.hpp"
 
 namespace reentry::truth {
 
 struct EarthConstants {
-  static constexpr double kMu_m3ps2 = 3.986004418e14;        // WGS84 / EGM96
-  static constexpr double kOmega_radps = 7.292115e-5;        // Earth rotation rate
-  static constexpr double kEquatorialRadius_m = 6378137.0;   // WGS84
-  static constexpr double kFlattening = 1.0 / 298.257223563; // WGS84
+  static constexpr double kMu_m3ps2 = physics::kMuEarth_m3ps2;
+  static constexpr double kOmega_radps = physics::kEarthRate_radps;
+  static constexpr double kEquatorialRadius_m = physics::kEarthEquatorialRadius_m;
+  static constexpr double kFlattening = physics::kEarthFlattening;
 };
 
 enum class ShapeModel { kSphere, kOblate };

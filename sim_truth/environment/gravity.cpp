@@ -1,10 +1,9 @@
 #include "environment/gravity.hpp"
 
 #include "environment/earth.hpp"
+#include "reentry/config/environment_files.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 namespace reentry::truth {
 namespace {
@@ -69,58 +68,13 @@ std::optional<Gravity> Gravity::create(GravityModel model, const std::string& eg
     set_error(error, egm96_file + ": degree/order " + std::to_string(degree_order) + " outside [2, " + std::to_string(kMaxDegree) + "]");
     return std::nullopt;
   }
-  std::ifstream in(egm96_file);
-  if (!in) {
-    set_error(error, egm96_file + ": cannot open");
+  config::GravityCoefficients coeff;
+  const std::string err = config::read_gravity_coefficients(egm96_file, degree_order, coeff);
+  if (!err.empty()) {
+    set_error(error, err);
     return std::nullopt;
   }
-  std::string line;
-  int line_no = 0;
-  double mu = 0.0, radius = 0.0;
-  std::vector<std::vector<double>> c(degree_order + 1), s(degree_order + 1);
-  for (int n = 0; n <= degree_order; ++n) {
-    c[n].assign(n + 1, 0.0);
-    s[n].assign(n + 1, 0.0);
-  }
-  std::vector<std::vector<bool>> seen(degree_order + 1);
-  for (int n = 0; n <= degree_order; ++n) seen[n].assign(n + 1, false);
-  bool header = false;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '%' || line[0] == '#') continue;
-    std::istringstream ls(line);
-    if (!header) {
-      if (!(ls >> mu >> radius) || !(mu > 0.0) || !(radius > 0.0) || !std::isfinite(mu) || !std::isfinite(radius)) {
-        set_error(error, egm96_file + ":" + std::to_string(line_no) + ": expected 'mu R' (positive), got '" + line + "'");
-        return std::nullopt;
-      }
-      header = true;
-      continue;
-    }
-    int n = 0, m = 0;
-    double cv = 0.0, sv = 0.0;
-    if (!(ls >> n >> m >> cv >> sv) || n < 0 || m < 0 || m > n || !std::isfinite(cv) || !std::isfinite(sv)) {
-      set_error(error, egm96_file + ":" + std::to_string(line_no) + ": expected 'n m C S' with 0 <= m <= n, got '" + line + "'");
-      return std::nullopt;
-    }
-    if (n > degree_order) continue;
-    c[n][m] = cv;
-    s[n][m] = sv;
-    seen[n][m] = true;
-  }
-  if (!header) {
-    set_error(error, egm96_file + ": empty file (no 'mu R' line)");
-    return std::nullopt;
-  }
-  for (int n = 2; n <= degree_order; ++n) {
-    for (int m = 0; m <= n; ++m) {
-      if (!seen[n][m]) {
-        set_error(error, egm96_file + ": missing coefficient n=" + std::to_string(n) + " m=" + std::to_string(m));
-        return std::nullopt;
-      }
-    }
-  }
-  return from_coefficients(mu, radius, degree_order, c, s, error);
+  return from_coefficients(coeff.mu_m3ps2, coeff.radius_m, degree_order, coeff.c, coeff.s, error);
 }
 
 double Gravity::potential(const Eigen::Vector3d& r_R) const {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "environment/scalar.hpp"
+#include "physics/earth_constants.hpp"
 
 namespace reentry::truth {
 
@@ -54,8 +55,8 @@ class Gravity {
   double potential_harmonics(const Eigen::Vector3d& r_R) const;
 
   GravityModel model_ = GravityModel::kCentral;
-  double mu_m3ps2_ = 3.986004418e14;
-  double radius_m_ = 6378137.0;
+  double mu_m3ps2_ = physics::kMuEarth_m3ps2;
+  double radius_m_ = physics::kEarthEquatorialRadius_m;
   int degree_ = 0;
   // Un-normalised coefficients, index n*(degree+3)+m, for the Cunningham V/W recursion.
   // Evaluation uses a stack workspace (no allocation, thread-safe).

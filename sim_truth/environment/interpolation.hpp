@@ -44,12 +44,36 @@ inline std::vector<double> natural_spline_moments(const std::vector<double>& x, 
   return m;
 }
 
+/// The spline's value for an AD query: value, slope and curvature at the query's value, the
+/// derivatives by the chain rule (scalar::chain; the same function as spline_eval's own).
+template <class T>
+T spline_chain(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& m, const T& xq) {
+  const int n = static_cast<int>(x.size());
+  const double xv = scalar::value(xq);
+  const int j = bracket(x.data(), n, xv);
+  const double h = x[j + 1] - x[j];
+  if (xv < x[0] || xv > x[n - 1]) {
+    const bool low = xv < x[0];
+    const int k = low ? 0 : n - 1;
+    const double slope = low ? (y[1] - y[0]) / h - h * (2.0 * m[0] + m[1]) / 6.0
+                             : (y[n - 1] - y[n - 2]) / h + h * (m[n - 2] + 2.0 * m[n - 1]) / 6.0;
+    return scalar::chain(xq, y[k] + slope * (xv - x[k]), slope, 0.0);
+  }
+  const double a = (x[j + 1] - xv) / h, b = (xv - x[j]) / h;
+  const double f = a * y[j] + b * y[j + 1] + ((a * a * a - a) * m[j] + (b * b * b - b) * m[j + 1]) * h * h / 6.0;
+  const double d1 = (y[j + 1] - y[j]) / h + h * ((3.0 * b * b - 1.0) * m[j + 1] - (3.0 * a * a - 1.0) * m[j]) / 6.0;
+  return scalar::chain(xq, f, d1, a * m[j] + b * m[j + 1]);
+}
+
 /// Spline value (derivative when want_slope) at xq inside [x0, x_{n-1}]; outside, linear
 /// extrapolation with the end slope (a natural spline has zero curvature there). Scalar-generic
 /// in the query (environment/scalar.hpp): the interval is chosen on the value of xq.
 template <class T>
 T spline_eval(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& m, const T& xq,
               bool want_slope = false) {
+  if constexpr (!scalar::is_double<T>) {
+    if (!want_slope) return spline_chain(x, y, m, xq);
+  }
   const int n = static_cast<int>(x.size());
   const double xv = scalar::value(xq);
   const int j = bracket(x.data(), n, xv);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <unsupported/Eigen/AutoDiff>
 
 #include <cmath>
 #include <type_traits>
@@ -46,6 +47,53 @@ template <class T>
 T hypot(const T& a, const T& b) {
   using std::sqrt;
   return sqrt(a * a + b * b);
+}
+
+/// f(x) from the value f and the derivatives d1 = f'(x), d2 = f''(x) at value(x): the double
+/// value itself, or for an Eigen AD scalar (first order, or nested once for second order) its
+/// derivatives by the chain rule in one step. A function whose own arithmetic is long (a table
+/// spline) costs the same in AD as in double this way.
+inline double chain(double, double f, double, double) { return f; }
+template <class Der>
+Eigen::AutoDiffScalar<Der> chain(const Eigen::AutoDiffScalar<Der>& x, double f, double d1, double d2) {
+  using Inner = typename Der::Scalar;
+  if constexpr (std::is_same_v<Inner, double>) {
+    return Eigen::AutoDiffScalar<Der>(f, Der(d1 * x.derivatives()));
+  } else {
+    const auto& g = x.value().derivatives();
+    Der der = x.derivatives();
+    for (Eigen::Index k = 0; k < der.size(); ++k) {
+      const Inner& xk = x.derivatives()[k];
+      der[k] = Inner(d1 * xk.value(), d1 * xk.derivatives() + (d2 * xk.value()) * g);
+    }
+    return Eigen::AutoDiffScalar<Der>(Inner(f, d1 * g), der);
+  }
+}
+
+/// f(a, b) likewise from f, its gradient (fa, fb) and its Hessian (faa, fab, fbb) at the values.
+struct Taylor2 {
+  double f, fa, fb, faa, fab, fbb;
+};
+inline double chain(double, double, const Taylor2& t) { return t.f; }
+template <class Der>
+Eigen::AutoDiffScalar<Der> chain(const Eigen::AutoDiffScalar<Der>& a, const Eigen::AutoDiffScalar<Der>& b,
+                                 const Taylor2& t) {
+  using Inner = typename Der::Scalar;
+  if constexpr (std::is_same_v<Inner, double>) {
+    return Eigen::AutoDiffScalar<Der>(t.f, Der(t.fa * a.derivatives() + t.fb * b.derivatives()));
+  } else {
+    const auto& ga = a.value().derivatives();
+    const auto& gb = b.value().derivatives();
+    Der der = a.derivatives();
+    for (Eigen::Index k = 0; k < der.size(); ++k) {
+      const Inner& ak = a.derivatives()[k];
+      const Inner& bk = b.derivatives()[k];
+      const double ca = t.faa * ak.value() + t.fab * bk.value(), cb = t.fab * ak.value() + t.fbb * bk.value();
+      der[k] = Inner(t.fa * ak.value() + t.fb * bk.value(),
+                     t.fa * ak.derivatives() + t.fb * bk.derivatives() + ca * ga + cb * gb);
+    }
+    return Eigen::AutoDiffScalar<Der>(Inner(t.f, t.fa * ga + t.fb * gb), der);
+  }
 }
 
 /// x^y for x > 0 (Eigen's AutoDiff pow does not nest; exp(y ln x) does).

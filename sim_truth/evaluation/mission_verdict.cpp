@@ -7,14 +7,6 @@
 
 namespace reentry::truth {
 
-double wrap_pi(double angle_rad) {
-  const double two_pi = 2.0 * M_PI;
-  double a = std::fmod(angle_rad, two_pi);
-  if (a <= -M_PI) a += two_pi;
-  if (a > M_PI) a -= two_pi;
-  return a;
-}
-
 namespace {
 void check_max(std::vector<std::string>& v, const char* name, double value, double limit) {
   if (std::isfinite(limit) && value > limit * (1.0 + kConstraintSlack)) v.emplace_back(name);

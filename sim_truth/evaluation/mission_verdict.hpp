@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dynamics/simulator.hpp"
+#include "physics/angles.hpp"
 #include "reentry/config/mission.hpp"
 
 namespace reentry::truth {
@@ -54,7 +55,6 @@ struct ArrivalLineOffset {
 ArrivalLineOffset arrival_line_offset(double lat_rad, double lon_rad, double aim_lat_rad, double aim_lon_rad,
                                       double line_heading_rad);
 
-/// Wrap an angle to (-pi, pi].
-double wrap_pi(double angle_rad);
+using physics::wrap_pi;  // angle to (-pi, pi]
 
 }  // namespace reentry::truth

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "environment/scalar.hpp"
+#include "physics/earth_constants.hpp"
 #include "reentry/config/mission.hpp"
 
 namespace reentry::truth {
@@ -14,7 +15,7 @@ namespace reentry::truth {
 inline constexpr double kChapmanC1_Wpm1p5 = 1.06584e8;  // c1 in W/m^(3/2) ... (3.5)
 inline constexpr double kChapmanC2 = 3.0;
 inline constexpr double kChapmanRho0_kgpm3 = 1.225;
-inline constexpr double kStandardGravity_mps2 = 9.80665;
+using physics::kStandardGravity_mps2;
 
 /// Circular velocity at the equatorial surface, Vc = sqrt(mu / R_eq) ~ 7905.4 m/s (3.5).
 double chapman_circular_velocity_mps();
@@ -40,10 +41,9 @@ T betts_leading_edge_heat_flux_Wpm2(const T& density_kgpm3, const T& velocity_mp
   constexpr double kFt_m = 0.3048;
   constexpr double kSlugPerFt3_kgpm3 = 14.59390293720636 / (kFt_m * kFt_m * kFt_m);  // 515.3788 kg/m^3
   constexpr double kBtuPerFt2s_Wpm2 = 1055.05585262 / (kFt_m * kFt_m);               // 11356.53 W/m^2
-  constexpr double kPi = 3.14159265358979323846;
   const T rho_slugpft3 = density_kgpm3 / kSlugPerFt3_kgpm3;
   const T v_fps = velocity_mps / kFt_m;
-  const T a = alpha_rad * 180.0 / kPi;
+  const T a = alpha_rad * 180.0 / M_PI;
   const T q_r = 17700.0 * sqrt(rho_slugpft3) * scalar::pow(T(1e-4 * v_fps), 3.07);
   const T q_a = 1.0672181 + a * (-1.9213774e-2 + a * (2.1286289e-4 + a * -1.0117249e-6));
   return q_a * q_r * kBtuPerFt2s_Wpm2;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <stdlib.h>
 
 #include <filesystem>
 #include <fstream>
@@ -28,24 +29,39 @@ inline void replace_once(std::string& text, const std::string& from, const std::
   text.replace(pos, from.size(), to);
 }
 
+// A new folder of its own directly in the temporary directory (mkdtemp: unique across
+// processes and concurrent builds, whatever the test's name), removed whole with everything in it.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& prefix = "reentry_test") {
+    std::string tmpl = (std::filesystem::temp_directory_path() / (prefix + "_XXXXXX")).string();
+    if (::mkdtemp(tmpl.data()) == nullptr) ADD_FAILURE() << "mkdtemp " << tmpl << " failed";
+    path_ = tmpl;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::string str() const { return path_.string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
 class TempMission {
  public:
-  TempMission() {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("reentry_config_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
+  TempMission() : tmp_("reentry_config_test") {
     mission_ = slurp(kConfigDir + "/missions/x33.toml");
     vehicle_ = slurp(kConfigDir + "/vehicles/x33.toml");
   }
-  ~TempMission() {
-    std::error_code ec;
-    std::filesystem::remove_all(dir_, ec);
-  }
+  const std::filesystem::path& dir() const { return tmp_.path(); }
   std::string& mission() { return mission_; }
   std::string& vehicle() { return vehicle_; }
-  std::string mission_path() const { return (dir_ / "mission.toml").string(); }
-  std::string vehicle_path() const { return (dir_ / "vehicle.toml").string(); }
+  std::string mission_path() const { return (dir() / "mission.toml").string(); }
+  std::string vehicle_path() const { return (dir() / "vehicle.toml").string(); }
   reentry::config::LoadResult load() {
     std::string m = mission_;
     replace_once(m, "\"../vehicles/x33.toml\"", "\"vehicle.toml\"");
@@ -57,7 +73,7 @@ class TempMission {
   }
 
  private:
-  std::filesystem::path dir_;
+  TempDir tmp_;
   std::string mission_, vehicle_;
 };
 

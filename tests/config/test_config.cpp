@@ -134,7 +134,8 @@ TEST(ConfigLoad, OrbiterTableEqualsPublicDataFile) {
 }
 
 TEST(ConfigLoad, EnvVarOverridesConfigDir) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "reentry_cfg_env_test";
+  const reentry_test::TempDir tmp("reentry_cfg_env_test");
+  const std::filesystem::path& dir = tmp.path();
   std::filesystem::create_directories(dir / "missions");
   ::setenv("REENTRY_CONFIG_DIR", dir.c_str(), 1);
   {
@@ -142,7 +143,6 @@ TEST(ConfigLoad, EnvVarOverridesConfigDir) {
   }
   const LoadResult r = load_mission("x33");
   ::unsetenv("REENTRY_CONFIG_DIR");
-  std::filesystem::remove_all(dir);
   ASSERT_FALSE(r.ok);
   EXPECT_NE(r.error.find((dir / "missions" / "x33.toml").string()), std::string::npos) << r.error;
   EXPECT_TRUE(load_mission("x33").ok);
@@ -228,6 +228,25 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"aero_alpha_over_64_rows", true, "alpha_deg = [0.000000,", kSeventyAlphas, "aero.alpha_deg",
                 "has 125 values; the on-board aerodynamic table holds at most 64"}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return std::string(info.param.label); });
+
+// The temporary copy of a test is one folder directly in the temporary directory, gone with
+// everything in it when the test ends: also in a parameterized test, whose name holds a '/'
+// (a folder named after the test left its parent behind, one per case and run).
+class TempFolder : public ::testing::TestWithParam<int> {};
+
+TEST_P(TempFolder, IsRemovedWholeAfterTheTest) {
+  std::filesystem::path dir;
+  {
+    TempMission t;
+    dir = t.dir();
+    ASSERT_TRUE(t.load().ok);
+    ASSERT_TRUE(std::filesystem::exists(dir / "mission.toml"));
+  }
+  EXPECT_EQ(dir.parent_path(), std::filesystem::temp_directory_path());
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+INSTANTIATE_TEST_SUITE_P(Config, TempFolder, ::testing::Values(0));
 
 TEST(ConfigLoad, DispersionSetsAreGaussianReferenceAndUniformStress) {
   const LoadResult r = load_mission("x33");

@@ -3,46 +3,22 @@
 // tunables: the guidance adapter) with file, key and value, not later with a bare status.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
-#include <filesystem>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <string>
 
 #include "guidance/mission_adapter.hpp"
 #include "models/onboard_models.hpp"
 #include "planner/entry_planner.hpp"
 #include "reentry/config/mission.hpp"
+#include "temp_mission.hpp"
 
 namespace {
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
+// The X-33 mission with `from` replaced by `to`, loaded from a temporary copy (removed after).
 reentry::config::LoadResult load_with(const std::string& from, const std::string& to) {
-  const std::string dir = REENTRY_TEST_CONFIG_DIR;
-  const auto tmp = std::filesystem::temp_directory_path() / ("reentry_capacity_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(tmp);
-  std::string m = slurp(dir + "/missions/x33.toml");
-  const std::size_t pos = m.find(from);
-  EXPECT_NE(pos, std::string::npos);
-  m.replace(pos, from.size(), to);
-  const std::string vehicle = slurp(dir + "/vehicles/x33.toml");
-  std::ofstream(tmp / "vehicle.toml") << vehicle;
-  const std::size_t vpos = m.find("vehicle_file = ");
-  m.replace(vpos, m.find('\n', vpos) - vpos, "vehicle_file = \"" + (tmp / "vehicle.toml").string() + "\"");
-  std::size_t epos;
-  while ((epos = m.find("\"../environment/")) != std::string::npos) m.replace(epos, 16, "\"" + dir + "/environment/");
-  std::ofstream(tmp / "mission.toml") << m;
-  auto r = reentry::config::load_mission((tmp / "mission.toml").string());
-  std::filesystem::remove_all(tmp);
-  return r;
+  reentry_test::TempMission t;
+  reentry_test::replace_once(t.mission(), from, to);
+  return t.load();
 }
 
 TEST(OnboardCapacity, Rk4StepsAtTheLimitFlyAndOneMoreIsRefusedAtLoad) {

@@ -21,7 +21,7 @@ TEST(EntryOptimal, X33NominalMaximumMarginFlownOpenLoopReachesTheCollocatedEndPo
   o.solve_decided = true;  // a success: solved only on request
   const OracleResult r = run_oracle(load("x33"), 0, false, o);
   ASSERT_TRUE(r.error.empty()) << r.error;
-  ASSERT_TRUE(converged(r.entry.solution.status)) << r.entry.solution.ipopt_status;
+  ASSERT_EQ(r.entry.solution.status, SolveStatus::kOptimal) << r.entry.solution.ipopt_status;
   EXPECT_TRUE(r.optimizer_feasible);
   EXPECT_EQ(r.feasibility, Feasibility::kFlown);
   // The guidance's own flight is feasible, so the best common margin is at least its own.
@@ -32,6 +32,26 @@ TEST(EntryOptimal, X33NominalMaximumMarginFlownOpenLoopReachesTheCollocatedEndPo
   EXPECT_LT(std::fabs(r.replay.final_time_diff_s), 1.0);
   EXPECT_TRUE(r.replay.verdict.success);
   for (const auto& v : r.replay.verdict.violations) ADD_FAILURE() << "replay violation " << v;
+}
+
+// Issue 35's refinement criterion: for every mission (the Orbiter's long flight included) the
+// nominal maximum-margin solution converges, its refinement passes are bounded, and its control
+// history flown open loop in the truth ends within 1 km of the collocated end point.
+TEST(EntryOptimal, EveryMissionsMaximumMarginFlownOpenLoopEndsWithinAKilometre) {
+  for (const char* name : {"x33", "horus", "x38", "orbiter"}) {
+    OracleOptions o;
+    o.solve_decided = true;
+    o.neighbour = std::make_shared<const Trajectory>();  // the guidance's start alone
+    const OracleResult r = run_oracle(load(name), 0, false, o);
+    ASSERT_TRUE(r.error.empty()) << name << ": " << r.error;
+    ASSERT_EQ(r.entry.solution.status, SolveStatus::kOptimal) << name << ": " << r.entry.solution.ipopt_status;
+    EXPECT_GT(r.entry.figures.margin, 0.0) << name;
+    EXPECT_LE(r.entry.passes.size(), static_cast<size_t>(o.solve.refinement.max_passes + 1)) << name;
+    ASSERT_TRUE(r.replayed) << name;
+    EXPECT_EQ(r.replay.summary.event, truth::SimEvent::kTaemEnergy) << name;
+    EXPECT_LT(r.replay.final_position_diff_m, 1000.0) << name;
+    EXPECT_TRUE(r.replay.verdict.success) << name;
+  }
 }
 
 // The mission's alpha profile at E/E_entry, interpolated here (linear, clamped) from the table.
@@ -76,7 +96,8 @@ TEST(EntryOptimal, X33AlphaBandKeepsTheSolutionOnTheMissionsAlphaProfile) {
   const OracleResult banded = run_oracle(m, 0, false, o);
   ASSERT_TRUE(banded.error.empty()) << banded.error;
   ASSERT_TRUE(converged(banded.entry.solution.status)) << banded.entry.solution.ipopt_status;
-  EXPECT_LT(max_alpha_departure_rad(m, banded.entry.solution.trajectory), band_rad * (1.0 + 1e-6));
+  // The band is kept about the profile with its corners rounded (by at most kProfileCornerDeviation_rad).
+  EXPECT_LT(max_alpha_departure_rad(m, banded.entry.solution.trajectory), band_rad * (1.0 + 1e-6) + kProfileCornerDeviation_rad);
   // A restriction cannot raise the best margin (both solves start from the same flight).
   EXPECT_LE(banded.entry.figures.margin, free_alpha.entry.figures.margin + 1e-3);
   EXPECT_GT(banded.entry.figures.margin, 0.0);  // the guidance flies this profile successfully
@@ -85,18 +106,19 @@ TEST(EntryOptimal, X33AlphaBandKeepsTheSolutionOnTheMissionsAlphaProfile) {
 }
 
 TEST(EntryOptimal, HorusDispersedMinimumMissIsAtLeastAsGoodAsTheGuidance) {
-  // Seed 9: a guidance success 2.48 km from the aim point (tolerance 3 km).
+  // Seed 9: a guidance success 1.5 km from the aim point (tolerance 3 km).
   OracleOptions o;
   o.mode = EntryMode::kMinMiss;
   o.solve_decided = true;
   const OracleResult r = run_oracle(load("horus"), 9, true, o);
   ASSERT_TRUE(r.error.empty()) << r.error;
   ASSERT_TRUE(r.flown.verdict.success);
-  ASSERT_TRUE(converged(r.entry.solution.status)) << r.entry.solution.ipopt_status;
+  ASSERT_EQ(r.entry.solution.status, SolveStatus::kOptimal) << r.entry.solution.ipopt_status;
   EXPECT_TRUE(r.optimizer_feasible);
   EXPECT_EQ(r.feasibility, Feasibility::kFlown);
   EXPECT_LE(r.entry.figures.miss_m, r.flown.verdict.taem_miss_m);
-  EXPECT_LT(r.replay.final_position_diff_m, 5000.0);
+  EXPECT_LT(r.replay.final_position_diff_m, 1000.0);
+  EXPECT_LE(r.replay.verdict.taem_miss_m, r.flown.verdict.taem_miss_m);
 }
 
 TEST(EntryOptimal, HorusRunTheGuidanceLosesIsProvenFeasibleByAnOpenLoopFlight) {
@@ -107,19 +129,21 @@ TEST(EntryOptimal, HorusRunTheGuidanceLosesIsProvenFeasibleByAnOpenLoopFlight) {
   ASSERT_FALSE(r.flown.verdict.success);
   ASSERT_TRUE(r.pullout.exceeded.empty());
   ASSERT_TRUE(r.solved);
-  ASSERT_TRUE(converged(r.entry.solution.status)) << r.entry.solution.ipopt_status;
+  ASSERT_EQ(r.entry.solution.status, SolveStatus::kOptimal) << r.entry.solution.ipopt_status;
   EXPECT_GT(r.entry.figures.margin, 0.0);
   ASSERT_TRUE(r.replayed);
   EXPECT_TRUE(r.replay.verdict.success);
   for (const auto& v : r.replay.verdict.violations) ADD_FAILURE() << "replay violation " << v;
   EXPECT_EQ(r.feasibility, Feasibility::kProvenOpenLoop);
   EXPECT_TRUE(r.feasible);
+  EXPECT_TRUE(r.reason.empty());
 }
 
-TEST(EntryOptimal, HorusRunBeyondThePulloutBoundHasNoPositiveMarginEither) {
+TEST(EntryOptimal, HorusRunBeyondThePulloutBoundIsFoundInfeasibleFromTwoStarts) {
   // Seed 11: the wings-level pull-out at alpha_max already exceeds the heat-flux limit, so the
   // campaign does not solve it; solved anyway, the optimizer (an independent method: every
-  // control history, not the one descent) finds no trajectory with a positive margin.
+  // control history, not the one descent) converges to a negative margin from the guidance's
+  // flight and from the neighbouring (nominal) solution: infeasible twice over.
   OracleOptions o;
   const OracleResult cheap = run_oracle(load("horus"), 11, true, o);
   ASSERT_TRUE(cheap.error.empty()) << cheap.error;
@@ -130,10 +154,15 @@ TEST(EntryOptimal, HorusRunBeyondThePulloutBoundHasNoPositiveMarginEither) {
   o.solve_decided = true;
   const OracleResult solved = run_oracle(load("horus"), 11, true, o);
   ASSERT_TRUE(solved.solved);
-  ASSERT_TRUE(converged(solved.entry.solution.status)) << solved.entry.solution.ipopt_status;
-  EXPECT_LT(solved.entry.figures.margin, 0.0);
-  EXPECT_FALSE(solved.replay.verdict.success);
-  EXPECT_EQ(solved.feasibility, Feasibility::kPulloutBound);
+  ASSERT_EQ(solved.attempts.size(), 2u);
+  for (const OracleAttempt& a : solved.attempts) {
+    ASSERT_EQ(a.entry.solution.status, SolveStatus::kOptimal) << a.start << ": " << a.entry.solution.ipopt_status;
+    EXPECT_LT(a.entry.figures.margin, -std::max(o.infeasible_margin, a.entry.figures.regularisation)) << a.start;
+    EXPECT_FALSE(a.replay.verdict.success) << a.start;
+  }
+  EXPECT_EQ(solved.attempts[0].start, "guidance");
+  EXPECT_EQ(solved.attempts[1].start, "neighbour");
+  EXPECT_EQ(solved.feasibility, Feasibility::kPulloutBound);  // the bound stands over the optimizer's verdict
 }
 
 }  // namespace

@@ -11,7 +11,11 @@
 #                       counted and never flown; later valid commands are (no latch-up).
 #   hostile_repro:      the ../shared/repro cases against fresh guidance processes: one LC03
 #                       fragment with a wrapping offset, one sample with a tick 1e6 ahead, a time
-#                       1e9 s, tick INT64_MAX, INT64_MIN+1 then INT64_MAX, a negative first tick.
+#                       1e9 s, tick INT64_MAX, INT64_MIN+1 then INT64_MAX, a negative first tick;
+#                       and issue 38's samples: a tick-0 sample at 999 km, 14.9 km/s, 489 m/s^2
+#                       (refused: not the mission's entry), a plausible tick 0 5 km too high
+#                       (replaced by the real stream after 3 samples), a 7.6 km/s radial velocity
+#                       at tick 150 (refused by the flight-path-angle rate). No latch, no link loss.
 #   logs:               a sealed run log, then 340 damaged copies of it (truncated, bit flips, garbage,
 #                       events removed, END_OF_RUN removed) into replay, loginfo and log2csv:
 #                       no crash, no sanitizer report, no damaged log called identical.
@@ -94,7 +98,8 @@ PY
     netns '
       export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0&recv_buf_size=8388608"
       bad=0
-      for sc in frag_wrap tick_jump time_jump tick_max tick_overflow tick_negative_start; do
+      for sc in frag_wrap tick_jump time_jump tick_max tick_overflow tick_negative_start first_absurd first_wrong \
+                radial_velocity; do
         "$REENTRY_FSW_BIN" --mission x33 --mode lockstep --link-timeout-ticks 100 --status-json "$dir/$sc.json" \
           > "$dir/$sc.fsw.txt" 2>&1 & fsw=$!
         sleep 0.3
@@ -105,6 +110,7 @@ PY
         counts=$(/usr/bin/python3 -c "import json,sys; g=json.load(open(sys.argv[1])); print(g[\"bad_datagrams\"], g[\"invalid_nav\"], g[\"skipped_ticks\"])" "$dir/$sc.json")
         read -r dg inv skip <<< "$counts"
         want_dg=0 want_inv=1; [[ $sc == frag_wrap ]] && { want_dg=5; want_inv=0; }; [[ $sc == tick_overflow ]] && want_inv=2
+        [[ $sc == first_wrong ]] && want_inv=2  # accepted, then 2 real samples refused until 3 replace it
         echo "$sc: reentry_fsw exit $rc; bad_datagrams $dg (want $want_dg), invalid_nav $inv (want $want_inv), skipped_ticks $skip (want 0)"
         [[ $rc -eq 0 && $frc -eq 0 && $dg -eq $want_dg && $inv -eq $want_inv && $skip -eq 0 ]] || bad=1
       done

@@ -73,7 +73,7 @@ class LawDouble : public exec::CommandLaw {
 int main(int argc, char** argv) {
   namespace app = reentry::fsw::app;
   CLI::App cli{"SIL test double of the guidance process"};
-  std::string mission, mode = "lockstep", replay, replay_log, status_json, log_path;
+  std::string mission, mode = "lockstep", replay, replay_log, status_json, log_path, digest;
   bool compare = false, unsealed = false;
   app::LiveOptions live;
   cli.add_option("--mission", mission);
@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
   cli.add_flag("--compare", compare);
   cli.add_flag("--unsealed", unsealed);
   cli.add_option("--replay-log", replay_log);
+  cli.add_option("--mission-digest", digest);  // the double flies no mission: accepted, not checked
   cli.add_option("--status-json", status_json);
   cli.add_option("--log", log_path);
   cli.add_option("--link-timeout-ticks", live.link_timeout_ticks);
@@ -114,10 +115,11 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "sil_guidance_double: %s\n", err.c_str());
       return app::kExitTransport;
     }
+    reentry::transport::install_stop_handlers();
     rc = node->run_live(*net, run_mode, live);
-    node->close_log();
+    if (!node->close_log()) rc = app::kExitWriteFailed;
   }
-  node->write_status_json(status_json, rc);
+  if (!node->write_status_json(status_json, rc)) rc = app::kExitWriteFailed;
   executive->shutdown();
   return rc;
 }

@@ -17,6 +17,7 @@ repo="$(cd "$(dirname "$0")/../.." && pwd)"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 unshare -n true 2>/dev/null || fail "'unshare -n' is not permitted: the SIL tests need a private network namespace (run as root)"
 rm -rf "$dir"; mkdir -p "$dir"
+run="$dir/run"  # tools/sil's --out: only its own outputs (the test's files stay in $dir)
 
 check_keys() {
   /usr/bin/python3 - "$1" <<'PY' || exit 1
@@ -36,12 +37,12 @@ PY
 # kill_one <sim|fsw> <lockstep|realtime>: start tools/sil, kill one side mid-flight, check the other.
 kill_one() {
   local victim="$1" mode="$2"
-  REENTRY_SIL_PLOTS=0 "$repo/tools/sil" --mission x33 --mode "$mode" --out "$dir" > "$dir/sil_stdout.txt" 2>"$dir/sil_stderr.txt" &
+  REENTRY_SIL_PLOTS=0 "$repo/tools/sil" --mission x33 --mode "$mode" --out "$run" > "$dir/sil_stdout.txt" 2>"$dir/sil_stderr.txt" &
   local sil=$!
-  for _ in $(seq 1 200); do [[ -s "$dir/pids" ]] && break; sleep 0.01; done
-  [[ -s "$dir/pids" ]] || fail "tools/sil did not start the processes"
+  for _ in $(seq 1 200); do [[ -s "$run/pids" ]] && break; sleep 0.01; done
+  [[ -s "$run/pids" ]] || fail "tools/sil did not start the processes"
   local sim_pid fsw_pid
-  sim_pid=$(awk '$1 == "sim" {print $2}' "$dir/pids"); fsw_pid=$(awk '$1 == "fsw" {print $2}' "$dir/pids")
+  sim_pid=$(awk '$1 == "sim" {print $2}' "$run/pids"); fsw_pid=$(awk '$1 == "fsw" {print $2}' "$run/pids")
   # Mid-flight: lockstep flies 20000 ticks in about 1.5 s here, realtime 10 ticks per second.
   if [[ "$mode" == lockstep ]]; then sleep 0.3; else sleep 2.0; fi
   kill -0 "$sim_pid" 2>/dev/null && kill -0 "$fsw_pid" 2>/dev/null || fail "a process ended before the kill"
@@ -60,10 +61,11 @@ kill_one() {
   /usr/bin/python3 - "$dir" "$victim" "$ms" <<'PY' || exit 1
 import json, sys, os
 d, victim, ms = sys.argv[1], sys.argv[2], int(sys.argv[3])
+test_dir, d = d, os.path.join(d, "run")
 s = json.load(open(os.path.join(d, "summary.json")))
 link = s["link"]
 print("summary link:", link, "| log:", s["log_problem"])
-err = open(os.path.join(d, "sil_stderr.txt")).read()
+err = open(os.path.join(test_dir, "sil_stderr.txt")).read()
 fails = []
 want_died, want_detector = ("simulator", "guidance") if victim == "sim" else ("guidance", "simulator")
 if link["died"] != want_died: fails.append("died = %r, want %r" % (link["died"], want_died))
@@ -91,20 +93,20 @@ PY
 
 case "$case_name" in
   lockstep_replay)
-    "$repo/tools/sil" --mission x33 --mode lockstep --out "$dir" > "$dir/sil_stdout.txt"
+    "$repo/tools/sil" --mission x33 --mode lockstep --out "$run" > "$dir/sil_stdout.txt"
     rc=$?
     [[ $rc -le 1 ]] || fail "tools/sil exited $rc: $(tail -3 "$dir/sil_stdout.txt")"
-    [[ -s "$dir/run.lcm" ]] || fail "no log written"
-    check_keys "$dir/summary.json"
-    grep -q '"sim_exit": 0' "$dir/summary.json" || fail "simulator did not end normally"
-    grep -q '"fsw_exit": 0' "$dir/summary.json" || fail "guidance did not end normally"
-    grep -q '"log_complete": true' "$dir/summary.json" || fail "run log incomplete: $(grep log_problem "$dir/summary.json")"
+    [[ -s "$run/run.lcm" ]] || fail "no log written"
+    check_keys "$run/summary.json"
+    grep -q '"sim_exit": 0' "$run/summary.json" || fail "simulator did not end normally"
+    grep -q '"fsw_exit": 0' "$run/summary.json" || fail "guidance did not end normally"
+    grep -q '"log_complete": true' "$run/summary.json" || fail "run log incomplete: $(grep log_problem "$run/summary.json")"
     # No retry: a log with a hole is a failure of the product, not bad luck.
-    out=$("$repo/tools/replay" "$dir/run.lcm")
+    out=$("$repo/tools/replay" "$run/run.lcm")
     echo "$out"
     [[ "$out" == identical* ]] || fail "replay did not print identical: $out"
     # tools/sil draws the plots at the end of the run: at least six valid, non-trivial PNGs.
-    /usr/bin/python3 - "$dir/plots" <<'PY' || fail "plots missing or invalid"
+    /usr/bin/python3 - "$run/plots" <<'PY' || fail "plots missing or invalid"
 import os, struct, sys
 d = sys.argv[1]
 pngs = sorted(f for f in os.listdir(d) if f.endswith(".png")) if os.path.isdir(d) else []
@@ -119,13 +121,13 @@ print("plots:", ok, "valid PNGs:", ", ".join(pngs))
 sys.exit(0 if ok >= 6 else 1)
 PY
     tick=5000
-    "$alter" "$dir/run.lcm" "$dir/altered.lcm" $tick 25.0 || fail "could not alter the log"
-    out=$("$repo/tools/replay" "$dir/altered.lcm"); rc=$?
+    "$alter" "$run/run.lcm" "$run/altered.lcm" $tick 25.0 || fail "could not alter the log"
+    out=$("$repo/tools/replay" "$run/altered.lcm"); rc=$?
     echo "$out"
     [[ $rc -ne 0 ]] || fail "altered log replayed without a difference"
     [[ "$out" == "differs at tick $tick "* ]] || fail "wrong tick reported: $out"
     # A log cut in the middle of an event, and one cut at an event boundary before END_OF_RUN.
-    /usr/bin/python3 - "$dir/run.lcm" "$dir/cut.lcm" "$dir/no_end.lcm" <<'PY' || fail "could not cut the log"
+    /usr/bin/python3 - "$run/run.lcm" "$run/cut.lcm" "$run/no_end.lcm" <<'PY' || fail "could not cut the log"
 import struct, sys
 data = open(sys.argv[1], "rb").read()
 pos, ends, end_of_run = 0, [], None
@@ -138,10 +140,10 @@ mid = ends[len(ends) * 2 // 3] + 17  # 17 bytes into an event: inside its header
 open(sys.argv[2], "wb").write(data[:mid])
 open(sys.argv[3], "wb").write(data[:end_of_run])
 PY
-    out=$("$repo/tools/replay" "$dir/cut.lcm"); rc=$?
+    out=$("$repo/tools/replay" "$run/cut.lcm"); rc=$?
     echo "$out"
     [[ $rc -eq 6 && "$out" == "damaged log"* ]] || fail "truncated log: exit $rc, $out"
-    out=$("$repo/tools/replay" "$dir/no_end.lcm"); rc=$?
+    out=$("$repo/tools/replay" "$run/no_end.lcm"); rc=$?
     echo "$out"
     [[ $rc -eq 5 && "$out" == "incomplete log"*END_OF_RUN* ]] || fail "log without END_OF_RUN: exit $rc, $out"
     ;;
@@ -150,18 +152,22 @@ PY
   kill_fsw_lockstep) kill_one fsw lockstep ;;
   kill_fsw_realtime) kill_one fsw realtime ;;
   realtime)
-    REENTRY_SIM_ARGS="--stop-after 60" "$repo/tools/sil" --mission x33 --mode realtime --out "$dir" > "$dir/sil_stdout.txt"
+    REENTRY_SIM_ARGS="--stop-after 60" "$repo/tools/sil" --mission x33 --mode realtime --out "$run" > "$dir/sil_stdout.txt"
     rc=$?
     [[ $rc -le 1 ]] || fail "tools/sil exited $rc"
-    check_keys "$dir/summary.json"
-    /usr/bin/python3 - "$dir/summary.json" <<'PY' || exit 1
+    check_keys "$run/summary.json"
+    # Into a file the progress is plain lines (every 10 % or minute), never carriage-return frames.
+    ! grep -q $'\r' "$dir/sil_stdout.txt" || fail "carriage-return frames in a log file"
+    /usr/bin/python3 - "$run/summary.json" <<'PY' || exit 1
 import json, sys
 s = json.load(open(sys.argv[1]))
 print("realtime: jitter_us_max =", s.get("jitter_us_max"), "cycle_overruns =", s.get("cycle_overruns"),
+      "sim_deadline_misses =", s.get("sim_deadline_misses"),
       "plan_waits =", s.get("plan_waits"), "cycle_us_max =", s.get("cycle_us_max"), "wall_s =", s.get("wall_s"),
       "log:", s.get("log_problem") or "complete")
 if s.get("jitter_us_max") is None or s.get("cycle_overruns") != 0: sys.exit(1)
 if s.get("plan_waits") != 0: sys.exit(1)  # realtime adopts when ready: it never waits
+if s.get("sim_deadline_misses") is None: sys.exit(1)  # the simulator counts its own misses
 if not s.get("log_complete"): sys.exit(1)
 PY
     ;;

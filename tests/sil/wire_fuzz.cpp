@@ -11,7 +11,8 @@
 //     Acts as the guidance process of a running simulator: answers every sample, and at tick 50
 //     first sends NaN/inf/out-of-range/future-tick/negative-tick commands and undecodable ones;
 //     from tick 51 on it banks 1.0 rad. The simulator must count each, hold, and fly the bank.
-//   wire_fuzz repro --scenario frag_wrap|tick_jump|time_jump|tick_max|tick_overflow|tick_negative_start
+//   wire_fuzz repro --scenario frag_wrap|tick_jump|time_jump|tick_max|tick_overflow|tick_negative_start|
+//                              first_absurd|first_wrong|radial_velocity
 //     The reproductions of ../shared/repro/ (frag_targets.sh, wire_fuzz.py) against a fresh
 //     guidance process: after the one bad datagram the real stream must be answered as before
 //     (nothing crashes, nothing latches: no answer flagged nav-invalid, commands not frozen).
@@ -140,7 +141,7 @@ std::int64_t g_flagged_answers = 0;  // GUIDANCE_CMD seen with the nav-invalid f
 
 // Waits for a GUIDANCE_CMD of `tick` (flagged nav-invalid or not); republishes `nav` each second.
 bool wait_cmd(Net& net, std::int64_t tick, bool flagged, const std::vector<std::uint8_t>& nav,
-              reentry::guidance_cmd_t& out, std::int64_t& republished, double timeout_s = 30.0) {
+              reentry::guidance_cmd_t& out, std::int64_t& republished, double timeout_s = 30.0, bool either = false) {
   const std::int64_t t0 = mono_ns();
   std::int64_t next = t0 + 1000000000LL;
   tr::Datagram d;
@@ -150,7 +151,7 @@ bool wait_cmd(Net& net, std::int64_t tick, bool flagged, const std::vector<std::
         decode_into(out, d.payload, d.payload_len, bad)) {
       const bool is_flagged = (out.health_flags & kHealthNavInvalidBit) != 0;
       if (is_flagged) ++g_flagged_answers;
-      if (out.tick == tick && is_flagged == flagged) return true;
+      if (out.tick == tick && (is_flagged == flagged || either)) return true;
     }
     if (mono_ns() > next) {
       net.sock->publish("NAV_STATE", nav.data(), static_cast<int>(nav.size()));
@@ -159,6 +160,14 @@ bool wait_cmd(Net& net, std::int64_t tick, bool flagged, const std::vector<std::
     }
   }
   return false;
+}
+
+// One command as the comparison reads it: tick, the bits of alpha and sigma, mode, plan.
+void write_command(std::ofstream& out, const reentry::guidance_cmd_t& cmd) {
+  std::uint64_t a = 0, s = 0;
+  std::memcpy(&a, &cmd.alpha_rad, 8);
+  std::memcpy(&s, &cmd.sigma_rad, 8);
+  out << cmd.tick << ' ' << a << ' ' << s << ' ' << static_cast<int>(cmd.mode) << ' ' << cmd.plan_seq << '\n';
 }
 
 int fuzz_guidance(const std::string& mission_arg, int ticks, int junk_per_tick, std::uint64_t seed,
@@ -203,10 +212,7 @@ int fuzz_guidance(const std::string& mission_arg, int ticks, int junk_per_tick, 
       std::fprintf(stderr, "wire_fuzz: no command for tick %lld (guidance dead or stuck)\n", static_cast<long long>(k));
       return 1;
     }
-    std::uint64_t a = 0, s = 0;
-    std::memcpy(&a, &cmd.alpha_rad, 8);
-    std::memcpy(&s, &cmd.sigma_rad, 8);
-    cmds << cmd.tick << ' ' << a << ' ' << s << ' ' << static_cast<int>(cmd.mode) << ' ' << cmd.plan_seq << '\n';
+    write_command(cmds, cmd);
     prev = cmd;
     have_prev = true;
     for (int j = 0; j < junk_per_tick; ++j, ++sent) {
@@ -316,6 +322,25 @@ int fuzz_simulator(const std::string& expect_path) {
   return ended ? 0 : 1;
 }
 
+// The issue-38 samples: plausible for every absolute window, absurd for the mission.
+reentry::nav_state_t absurd_nav(reentry::nav_state_t n, const std::string& scenario) {
+  double r = 0.0, v = 0.0;
+  for (int i = 0; i < 3; ++i) r += n.position_I_m[i] * n.position_I_m[i], v += n.velocity_I_mps[i] * n.velocity_I_mps[i];
+  r = std::sqrt(r), v = std::sqrt(v);
+  if (scenario == "first_absurd") {  // 999 km, 14.9 km/s, 489 m/s^2 sensed
+    for (int i = 0; i < 3; ++i) {
+      n.position_I_m[i] *= (6378137.0 + 999e3) / r;
+      n.velocity_I_mps[i] *= 14900.0 / v;
+      n.aero_accel_I_mps2[i] = -489.0 * n.velocity_I_mps[i] / 14900.0;
+    }
+  } else if (scenario == "first_wrong") {  // plausible for the mission, 5 km too high
+    for (int i = 0; i < 3; ++i) n.position_I_m[i] *= (r + 5e3) / r;
+  } else if (scenario == "radial_velocity") {  // 7.6 km/s straight up
+    for (int i = 0; i < 3; ++i) n.velocity_I_mps[i] = 7600.0 * n.position_I_m[i] / r;
+  }
+  return n;
+}
+
 int repro(const std::string& mission_arg, const std::string& scenario) {
   const auto loaded = reentry::config::load_mission(mission_arg);
   if (!loaded.ok) return 2;
@@ -328,7 +353,8 @@ int repro(const std::string& mission_arg, const std::string& scenario) {
   std::mt19937_64 rng(7);
   const double dt = 1.0 / loaded.mission.guidance.gnc_rate_hz;
   const std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
-  const std::int64_t bad_at = scenario == "frag_wrap" ? 50 : 150;
+  const bool first = scenario == "first_absurd" || scenario == "first_wrong";
+  const std::int64_t bad_at = scenario == "frag_wrap" ? 50 : first ? 0 : 150;
   const std::int64_t end = scenario == "frag_wrap" ? 100 : 450;
   std::int64_t answered = 0, flagged = 0, republished = 0;
   reentry::guidance_cmd_t cmd{};
@@ -358,11 +384,16 @@ int repro(const std::string& mission_arg, const std::string& scenario) {
         bad.t_s = 1e9, send_nav(bad);
       } else if (scenario == "tick_max") {
         bad.tick = kMax, send_nav(bad);
+      } else {
+        send_nav(absurd_nav(bad, scenario));
       }
     }
     const auto bytes = reentry::testing::encoded(nav);
     net.sock->publish("NAV_STATE", bytes.data(), static_cast<int>(bytes.size()));
-    if (!wait_cmd(net, k, false, bytes, cmd, republished, 5.0)) {
+    // A plausible-but-wrong first sample is accepted and the first real samples answered flagged
+    // until they replace it (the simulator takes any answer of its tick).
+    const bool any_answer = scenario == "first_wrong" && k < 5;
+    if (!wait_cmd(net, k, false, bytes, cmd, republished, 5.0, any_answer)) {
       std::printf("wire_fuzz repro %s: no answer at tick %lld: the guidance process died or latched\n", scenario.c_str(),
                   static_cast<long long>(k));
       return 1;
@@ -381,7 +412,13 @@ int repro(const std::string& mission_arg, const std::string& scenario) {
   // (300 of 300): here every tick must get its own unflagged answer.
   std::printf("wire_fuzz repro %s: %lld of %lld ticks answered, %lld answers flagged nav-invalid\n", scenario.c_str(),
               static_cast<long long>(answered), static_cast<long long>(end), static_cast<long long>(flagged));
-  return answered == end && flagged == 0 ? 0 : 1;
+  // The injected sample itself is answered flagged (values refused) when it carries a tick the
+  // guidance has not answered yet; the plausible wrong one is accepted, then 2 real samples are
+  // refused until 3 consistent ones replace it.
+  const std::int64_t want_flagged = scenario == "first_absurd" || scenario == "radial_velocity" ? 1
+                                    : scenario == "first_wrong"                                 ? 2
+                                                                                                : 0;
+  return answered == end && flagged == want_flagged ? 0 : 1;
 }
 
 }  // namespace

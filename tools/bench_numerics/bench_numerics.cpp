@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "physics/earth_constants.hpp"
 #include "numerics/cubic_spline.hpp"
 #include "numerics/root_finding.hpp"
 #include "numerics/runge_kutta.hpp"
@@ -63,7 +64,7 @@ BENCHMARK(BM_BrentCosMinusCube);
 struct TwoBody {
   void operator()(double, const rn::State<6>& s, rn::State<6>& d) const {
     const double r = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-    const double k = -3.986004418e14 / (r * r * r);
+    const double k = -reentry::physics::kMuEarth_m3ps2 / (r * r * r);
     for (int i = 0; i < 3; ++i) {
       d[i] = s[i + 3];
       d[i + 3] = k * s[i];

@@ -21,15 +21,16 @@
 #include <string>
 #include <vector>
 
+#include "physics/earth_constants.hpp"
+
 namespace {
 
-constexpr double kMu_m3ps2 = 3.986004418e14;
-constexpr double kEarthRadius_m = 6378137.0;
-constexpr double kOmegaEarth_radps = 7.292115e-5;
+using reentry::physics::kEarthRate_radps;
+using reentry::physics::kMuEarth_m3ps2;
+using reentry::physics::kStandardGravity_mps2;
+using reentry::physics::kEarthEquatorialRadius_m;
 constexpr double kRho0_kgpm3 = 1.225;
 constexpr double kScaleHeight_m = 7050.0;
-constexpr double kG0_mps2 = 9.80665;
-constexpr double kPi = 3.14159265358979323846;
 
 struct Vehicle {
   double mass_kg = 37000.0;
@@ -64,10 +65,10 @@ struct EndOfRun {
 // Planar-Earth-free 3-DOF point-mass equations over a spherical non-rotating Earth.
 void derivatives(const Vehicle& veh, const double* y, double sigma, double* dy) {
   const double r = y[0], lat = y[2], v = y[3], gam = y[4], chi = y[5];
-  const double rho = kRho0_kgpm3 * std::exp(-(r - kEarthRadius_m) / kScaleHeight_m);
+  const double rho = kRho0_kgpm3 * std::exp(-(r - kEarthEquatorialRadius_m) / kScaleHeight_m);
   const double drag = 0.5 * rho * v * v * veh.ref_area_m2 * veh.cd / veh.mass_kg;
   const double lift = drag * veh.lift_over_drag;
-  const double g = kMu_m3ps2 / (r * r);
+  const double g = kMuEarth_m3ps2 / (r * r);
   dy[0] = v * std::sin(gam);
   dy[1] = v * std::cos(gam) * std::sin(chi) / (r * std::cos(lat));
   dy[2] = v * std::cos(gam) * std::cos(chi) / r;
@@ -80,7 +81,7 @@ Sample sample_of(const Vehicle& veh, const double* y, double t, double sigma, do
   Sample s{};
   s.t_s = t;
   s.r_m = y[0];
-  s.h_m = y[0] - kEarthRadius_m;
+  s.h_m = y[0] - kEarthEquatorialRadius_m;
   s.lon_rad = y[1];
   s.lat_rad = y[2];
   s.V_mps = y[3];
@@ -89,14 +90,14 @@ Sample sample_of(const Vehicle& veh, const double* y, double t, double sigma, do
   s.mach = y[3] / 295.0;
   s.sigma_rad = sigma;
   s.alpha_rad = alpha;
-  const double rho = kRho0_kgpm3 * std::exp(-(y[0] - kEarthRadius_m) / kScaleHeight_m);
+  const double rho = kRho0_kgpm3 * std::exp(-(y[0] - kEarthEquatorialRadius_m) / kScaleHeight_m);
   s.q_Pa = 0.5 * rho * y[3] * y[3];
   s.D_mps2 = s.q_Pa * veh.ref_area_m2 * veh.cd / veh.mass_kg;
   s.L_mps2 = s.D_mps2 * veh.lift_over_drag;
   s.qdot_Wpm2 = 1.7415e-4 * std::sqrt(rho / veh.nose_radius_m) * std::pow(y[3], 3.0);  // Sutton-Graves
   s.Q_Jpm2 = heat_load;
-  s.n_g = std::hypot(s.D_mps2, s.L_mps2) / kG0_mps2;
-  s.E_Jpkg = 0.5 * y[3] * y[3] - kMu_m3ps2 / y[0] + kMu_m3ps2 / kEarthRadius_m;
+  s.n_g = std::hypot(s.D_mps2, s.L_mps2) / kStandardGravity_mps2;
+  s.E_Jpkg = 0.5 * y[3] * y[3] - kMuEarth_m3ps2 / y[0] + kMuEarth_m3ps2 / kEarthEquatorialRadius_m;
   s.heading_to_taem_rad = 0.02 * std::sin(0.01 * t);
   return s;
 }
@@ -153,16 +154,16 @@ reentry::plan_t plan_from(const std::vector<Sample>& traj, size_t from, int seq,
 
 // The trajectory: RK4 over each tick until about TAEM (20 km or 760 m/s).
 std::vector<Sample> fly(const Vehicle& veh, int ticks, double dt_s) {
-  const double alpha_rad = 40.0 * kPi / 180.0;
+  const double alpha_rad = 40.0 * M_PI / 180.0;
   // Entry interface: 121.9 km, 7400 m/s, -1.2 deg, heading 60 deg, near Vandenberg.
-  double y[6] = {kEarthRadius_m + 121.9e3, -120.6 * kPi / 180.0, 34.7 * kPi / 180.0, 7400.0, -1.2 * kPi / 180.0,
-                 60.0 * kPi / 180.0};
+  double y[6] = {kEarthEquatorialRadius_m + 121.9e3, -120.6 * M_PI / 180.0, 34.7 * M_PI / 180.0, 7400.0, -1.2 * M_PI / 180.0,
+                 60.0 * M_PI / 180.0};
   std::vector<Sample> traj;
   double heat_load = 0.0;
   for (int k = 0; k < ticks; ++k) {
     const double t = k * dt_s;
     // Bank 65 deg right, reversal to the left at 40% of the run: a typical lateral profile.
-    const double sigma = (k < (ticks * 2) / 5 ? 1.0 : -1.0) * 65.0 * kPi / 180.0;
+    const double sigma = (k < (ticks * 2) / 5 ? 1.0 : -1.0) * 65.0 * M_PI / 180.0;
     traj.push_back(sample_of(veh, y, t, sigma, alpha_rad, heat_load));
     const int sub = 20;  // RK4 sub-steps per tick
     const double h = dt_s / sub;
@@ -178,7 +179,7 @@ std::vector<Sample> fly(const Vehicle& veh, int ticks, double dt_s) {
       for (int i = 0; i < 6; ++i) y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
       heat_load += h * sample_of(veh, y, t, sigma, alpha_rad, 0.0).qdot_Wpm2;
     }
-    if (y[0] - kEarthRadius_m < 20e3 || y[3] < 760.0) break;  // about TAEM
+    if (y[0] - kEarthEquatorialRadius_m < 20e3 || y[3] < 760.0) break;  // about TAEM
   }
   // A range to go that shrinks with the energy (the aim point 4000 km ahead).
   const double e_entry = traj.front().E_Jpkg;
@@ -190,7 +191,7 @@ reentry::nav_state_t nav_of(const Sample& s, std::int64_t k, bool last) {
   reentry::nav_state_t nav{};
   reentry::stamp(nav, s.t_s, k);
   nav.t_s = s.t_s;
-  const double theta = kOmegaEarth_radps * s.t_s;
+  const double theta = kEarthRate_radps * s.t_s;
   const double lon_i = s.lon_rad + theta;
   const double cl = std::cos(s.lat_rad);
   nav.position_I_m[0] = s.r_m * cl * std::cos(lon_i);

@@ -35,11 +35,11 @@ std::unique_ptr<truth::Simulator> make_run_simulator(const config::Mission& miss
 /// functions the two processes use (generated from interfaces/*.lcm).
 class TraceLog {
  public:
-  bool open(const std::string& path, int every_ticks) {
+  /// False and `error` (the file and the reason) when the log cannot be created.
+  bool open(const std::string& path, int every_ticks, std::string& error) {
     every_ = every_ticks;
-    std::string error;
     if (log_.open(path, 1u << 20, transport::EventLogWriter::WhenFull::kWait, error)) return true;
-    std::fprintf(stderr, "closed_loop: no trace: %s\n", error.c_str());
+    error = "write failed: " + error;
     return false;
   }
   bool is_open() const { return log_.is_open(); }
@@ -59,10 +59,13 @@ class TraceLog {
     fsw::app::fill_tracker_status(out, tracker_);
     put("TRACKER_STATUS", tracker_);
   }
-  void close(const truth::RunSummary& summary, std::int64_t k, double taem_heading_rad) {
+  /// Ends the log; false and `error` when it could not be written whole (disk full).
+  bool close(const truth::RunSummary& summary, std::int64_t k, double taem_heading_rad, std::string& error) {
     truth::fill_end_of_run(summary, k, truth::end_event_code(summary.event), taem_heading_rad, end_);
     put("RUN_CONTROL", end_);
-    log_.close();
+    if (log_.close()) return true;
+    error = "write failed: " + log_.error();
+    return false;
   }
 
  private:
@@ -124,7 +127,8 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
   double alpha_prev = 0.0, sigma_prev = 0.0;
   bool have_prev = false;
   TraceLog trace;
-  if (!trace_log.empty()) trace.open(trace_log, std::max(1, static_cast<int>(std::lround(mission.guidance.gnc_rate_hz))));
+  if (!trace_log.empty())
+    trace.open(trace_log, std::max(1, static_cast<int>(std::lround(mission.guidance.gnc_rate_hz))), r.trace_error);
   const auto max_ticks = static_cast<std::int64_t>(std::ceil(sim->settings().time_limit_s / dt)) + 2;
   std::int64_t k = 0;
   for (; k < max_ticks && !sim->finished(); ++k) {
@@ -153,7 +157,7 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
   }
   if (on_sample) on_sample(*sim, alpha_prev, sigma_prev);
   r.summary = sim->summary();
-  if (trace.is_open()) trace.close(r.summary, k, mission.taem.heading_rad);
+  if (trace.is_open()) trace.close(r.summary, k, mission.taem.heading_rad, r.trace_error);
   r.verdict = truth::judge_mission(mission, r.summary, r.rates);
   r.counters = stack.executive->counters();
   stack.executive->shutdown();

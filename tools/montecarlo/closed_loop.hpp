@@ -25,6 +25,7 @@ struct ClosedLoopResult {
   truth::CommandRateMaxima rates;
   truth::DispersionDraw dispersion;
   fsw::exec::ExecCounters counters;     // the executive's at the end of the run
+  std::string trace_error;                // the trace log could not be written whole (file and reason)
   double wall_s = 0.0;
 };
 

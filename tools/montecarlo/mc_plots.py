@@ -1,9 +1,11 @@
 #!/usr/bin/python3
 """Plots of a Monte Carlo campaign: miss histogram, TAEM footprint, error histograms.
 
-Reads DIR/runs*.jsonl (one JSON record per run, written by reentry_mc) and DIR/report.json;
-writes DIR/miss_histogram.png, DIR/footprint.png, DIR/errors.png and, when runs failed,
-DIR/failure_modes.png (the report's failure modes as bars; matplotlib, Agg).
+Reads the campaign's records (the file DIR/report.json names, else DIR/runs*.jsonl; one JSON
+record per run, written by reentry_mc) and DIR/report.json; writes DIR/miss_histogram.png,
+DIR/footprint.png, DIR/errors.png and, when runs failed, DIR/failure_modes.png (the report's
+failure modes as bars; matplotlib, Agg); a failure_modes.png of an earlier campaign is removed.
+Exit: 0, 2 no records, 8 a PNG file could not be written (file and reason named).
 """
 import glob
 import json
@@ -17,20 +19,74 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: mc_plots.py DIR")
-    out = sys.argv[1]
+EXIT_USAGE, EXIT_WRITE_FAILED = 2, 8
+
+
+class WriteFailed(Exception):
+    """A PNG file could not be written."""
+
+
+def save(fig, path):
+    try:
+        fig.savefig(path, dpi=110)
+    except OSError as exc:
+        raise WriteFailed(f"{path}: {exc.strerror or exc}") from exc
+    finally:
+        plt.close(fig)
+
+
+def load_runs(out):
+    """The campaign's own records: the file its report names (else every runs*.jsonl)."""
+    report = {}
+    try:
+        with open(os.path.join(out, "report.json")) as f:
+            report = json.load(f)
+    except (OSError, ValueError):
+        pass
+    paths = [os.path.join(out, report["records"])] if "records" in report else \
+        sorted(glob.glob(os.path.join(out, "runs*.jsonl")))
     runs = []
-    for path in sorted(glob.glob(os.path.join(out, "runs*.jsonl"))):
+    for path in paths:
         with open(path) as f:
             runs += [json.loads(line) for line in f if line.strip()]
+    # A run that could not be flown carries no result to plot.
+    return [r for r in runs if not r.get("error") and isinstance(r.get("miss_km"), (int, float))], report
+
+
+def main():
+    if len(sys.argv) != 2:
+        print("usage: mc_plots.py DIR", file=sys.stderr)
+        return EXIT_USAGE
+    out = sys.argv[1]
+    runs, report = load_runs(out)
     if not runs:
-        sys.exit(f"mc_plots: no runs*.jsonl in {out}")
+        print(f"mc_plots: no flown run records in {out}", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        plot_all(out, runs, report)
+    except WriteFailed as exc:
+        print(f"mc_plots: write failed: {exc}", file=sys.stderr)
+        return EXIT_WRITE_FAILED
+    except OSError as exc:
+        print(f"mc_plots: write failed: {exc.filename}: {exc.strerror}", file=sys.stderr)
+        return EXIT_WRITE_FAILED
+    return 0
+
+
+def plot_all(out, runs, report):
     ok = [r for r in runs if r["success"]]
     bad = [r for r in runs if not r["success"]]
     title = f"{runs[0].get('mission', '')}: {len(ok)}/{len(runs)} runs successful"
+    plot_histogram(out, runs, title)
+    plot_footprint(out, runs, ok, bad, title)
+    plot_errors(out, runs, title)
+    written = "miss_histogram.png, footprint.png, errors.png"
+    if plot_modes(out, report.get("failure_modes", []), title):
+        written += ", failure_modes.png"
+    print(f"mc_plots: wrote {written} in {out}")
 
+
+def plot_histogram(out, runs, title):
     fig, ax = plt.subplots(figsize=(9, 5.5))
     miss = [r["miss_km"] for r in runs]
     bins = [0, 1, 2, 3, 5, 8, 11, 20, 50, 100, 1000, max(1001.0, max(miss) * 1.01)]
@@ -41,9 +97,10 @@ def main():
     ax.set_title(title)
     ax.grid(alpha=0.4)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "miss_histogram.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(out, "miss_histogram.png"))
 
+
+def plot_footprint(out, runs, ok, bad, title):
     fig, ax = plt.subplots(figsize=(8, 7))
     if all("miss_along_km" in r for r in runs):
         # Footprint in the arrival-line frame: across the line (> 0 right) against along it
@@ -70,9 +127,10 @@ def main():
     ax.legend()
     ax.grid(alpha=0.4)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "footprint.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(out, "footprint.png"))
 
+
+def plot_errors(out, runs, title):
     fig, axes = plt.subplots(1, 3, figsize=(14, 4.5))
     for ax, key, label in ((axes[0], "alt_err_km", "altitude error at TAEM [km]"),
                            (axes[1], "mach", "Mach at TAEM [-]"),
@@ -83,35 +141,34 @@ def main():
         ax.grid(alpha=0.4)
     fig.suptitle(title + " (runs within 60 km)")
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "errors.png"), dpi=110)
-    plt.close(fig)
-    written = "miss_histogram.png, footprint.png, errors.png"
-    report_path = os.path.join(out, "report.json")
-    modes = []
-    if os.path.exists(report_path):
-        with open(report_path) as f:
-            modes = json.load(f).get("failure_modes", [])
-    if modes:
-        # Failure modes (each failed run's set of violations), most frequent at the top.
-        shown = modes[:12]
-        fig, ax = plt.subplots(figsize=(10, 0.45 * len(shown) + 1.6))
-        labels = [m["mode"].replace("taem_", "") for m in shown][::-1]
-        counts = [m["runs"] for m in shown][::-1]
-        ax.barh(range(len(shown)), counts, color="tab:red", edgecolor="k")
-        ax.set_yticks(range(len(shown)))
-        ax.set_yticklabels(labels)
-        for i, c in enumerate(counts):
-            ax.text(c, i, f" {c}", va="center")
-        ax.set_xlabel("failed runs [-]")
-        rest = sum(m["runs"] for m in modes[12:])
-        ax.set_title(title + (f" ({rest} more in other modes)" if rest else ""))
-        ax.grid(axis="x", alpha=0.4)
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "failure_modes.png"), dpi=110)
-        plt.close(fig)
-        written += ", failure_modes.png"
-    print(f"mc_plots: wrote {written} in {out}")
+    save(fig, os.path.join(out, "errors.png"))
+
+
+def plot_modes(out, modes, title):
+    """Failure modes (each failed run's set of violations), most frequent at the top; False
+    when no run failed (an earlier campaign's plot is removed)."""
+    stale = os.path.join(out, "failure_modes.png")
+    if not modes:
+        if os.path.exists(stale):
+            os.remove(stale)
+        return False
+    shown = modes[:12]
+    fig, ax = plt.subplots(figsize=(10, 0.45 * len(shown) + 1.6))
+    labels = [m["mode"].replace("taem_", "") for m in shown][::-1]
+    counts = [m["runs"] for m in shown][::-1]
+    ax.barh(range(len(shown)), counts, color="tab:red", edgecolor="k")
+    ax.set_yticks(range(len(shown)))
+    ax.set_yticklabels(labels)
+    for i, c in enumerate(counts):
+        ax.text(c, i, f" {c}", va="center")
+    ax.set_xlabel("failed runs [-]")
+    rest = sum(m["runs"] for m in modes[12:])
+    ax.set_title(title + (f" ({rest} more in other modes)" if rest else ""))
+    ax.grid(axis="x", alpha=0.4)
+    fig.tight_layout()
+    save(fig, os.path.join(out, "failure_modes.png"))
+    return True
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

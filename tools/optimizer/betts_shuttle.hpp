@@ -44,6 +44,7 @@ struct BettsShuttle {
   int n_path() const { return std::isfinite(heating_limit_BTU) ? 1 : 0; }
   int n_terminal() const { return 3; }  // h_f, v_f, gamma_f
   double t0() const { return 0.0; }
+  bool time_invariant() const { return true; }  // non-rotating Earth
   void initial_state(double* x) const {
     x[0] = 260000.0;
     x[1] = 0.0;

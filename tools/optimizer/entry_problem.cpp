@@ -17,12 +17,15 @@ const char* to_string(EntryMode m) {
 }
 
 EntryProblem::EntryProblem(const truth::Simulator& sim, EntryMode mode, double tf_guess_s, double downrange_m,
-                           double alpha_band_rad)
+                           double alpha_band_rad, double extent_limit_m)
     : model_(sim.point_model()),
       mission_(sim.mission()),
+      aero_(sim.point_model()),
+      profile_(sim.mission().alpha_profile.x, sim.mission().alpha_profile.y, kProfileCornerDeviation_rad),
       mode_(mode),
       tf_guess_s_(tf_guess_s),
-      downrange_m_(downrange_m) {
+      downrange_m_(downrange_m),
+      extent_limit_m_(extent_limit_m) {
   const auto& y = sim.state();
   for (int i = 0; i < kStates; ++i) x0_[i] = y[static_cast<size_t>(i)];
   e_taem_ = sim.taem_energy_Jpkg();
@@ -65,7 +68,7 @@ EntryProblem::EntryProblem(const truth::Simulator& sim, EntryMode mode, double t
   alpha_band_rad_ = footprint ? kFootprintAlphaBand_rad : alpha_band_rad;
   if (alpha_band_rad_ > 0.0 && !mission_.alpha_profile.x.empty()) path_rows_.push_back(PathRow::kAlphaProfile);
   terminal_rows_.push_back(TermRow::kEnergy);
-  if (mode == EntryMode::kMaxMargin || mode == EntryMode::kMinMiss) terminal_rows_.push_back(TermRow::kRange);
+  if (mode == EntryMode::kMaxMargin) terminal_rows_.push_back(TermRow::kRange);
   terminal_rows_.push_back(TermRow::kAltHigh);
   terminal_rows_.push_back(TermRow::kAltLow);
   if (tm.mach_target > 0.0 && std::isfinite(tm.mach_tol)) {
@@ -83,6 +86,8 @@ EntryProblem::EntryProblem(const truth::Simulator& sim, EntryMode mode, double t
     terminal_rows_.push_back(TermRow::kHeadingCos);
   }
   if (mode == EntryMode::kMaxCrossrange || mode == EntryMode::kMinCrossrange) terminal_rows_.push_back(TermRow::kDownrange);
+  if (mode == EntryMode::kMaxDownrange || mode == EntryMode::kMinDownrange) terminal_rows_.push_back(TermRow::kCrossrange);
+  if (footprint && std::isfinite(extent_limit_m)) terminal_rows_.push_back(TermRow::kExtentLimit);
 }
 
 void EntryProblem::initial_state(double* x) const {
@@ -106,12 +111,9 @@ void EntryProblem::control_bounds(double* lo, double* hi) const {
 void EntryProblem::param_bounds(double* lo, double* hi) const {
   lo[0] = 0.2 * tf_guess_s_;
   hi[0] = 3.0 * tf_guess_s_;
-  if (mode_ == EntryMode::kMaxMargin || mode_ == EntryMode::kMinMiss) {
-    // kMinMiss: a miss below 1 % of the tolerance counts as zero. Below that the optimum is a
-    // whole family of trajectories, which keeps the solver from converging; at the bound the
-    // problem is a feasibility problem, which it solves.
-    lo[1] = mode_ == EntryMode::kMinMiss ? -0.99 : -1.0;
-    hi[1] = mode_ == EntryMode::kMinMiss ? 1e4 : 100.0;
+  if (mode_ == EntryMode::kMaxMargin) {
+    lo[1] = -1.0;
+    hi[1] = 100.0;
   } else {
     lo[1] = hi[1] = 0.0;
   }
@@ -160,6 +162,8 @@ void EntryProblem::terminal_bounds(double* lo, double* hi) const {
       case TermRow::kEnergy: lo[k] = hi[k] = 0.0; break;
       case TermRow::kHeadingCos: lo[k] = 0.0; hi[k] = inf; break;
       case TermRow::kDownrange: lo[k] = hi[k] = downrange_m_; break;
+      case TermRow::kCrossrange: lo[k] = hi[k] = 0.0; break;
+      case TermRow::kExtentLimit: lo[k] = -inf; hi[k] = extent_limit_m_; break;
       default: lo[k] = -inf; hi[k] = 1.0; break;
     }
   }
@@ -198,7 +202,9 @@ void EntryProblem::terminal_scales(double* s) const {
   for (size_t k = 0; k < terminal_rows_.size(); ++k) {
     switch (terminal_rows_[k]) {
       case TermRow::kEnergy: s[k] = 1e3; break;
-      case TermRow::kDownrange: s[k] = 1e4; break;
+      case TermRow::kDownrange:
+      case TermRow::kCrossrange:
+      case TermRow::kExtentLimit: s[k] = 1e4; break;
       default: s[k] = 1.0; break;
     }
   }

@@ -1,12 +1,13 @@
 // The entry of one run as an optimal-control problem on the truth simulator's own models.
 //
 // State: the simulator's inertial position and velocity (r_I, v_I), controls: alpha and sigma,
-// parameters: t_f and a margin s. The dynamics are truth::PointModel::evaluate, the function the
-// simulator integrates (rotating oblate Earth, J2-J4 gravity, US76 with the run's density
+// parameters: t_f and a margin s. The dynamics are truth::PointModel::evaluate_with, the function
+// the simulator integrates (rotating oblate Earth, J2-J4 gravity, US76 with the run's density
 // dispersion, the run's wind, the run's aero scales, mass and trim, the vehicle's heating
-// model); the initial state is the simulator's entry state of that run. Nothing is modelled
-// twice: a dispersion or a model change in the truth reaches the optimizer through
-// truth::Simulator::create.
+// model), with the aerodynamic coefficients from the C2 fits of the truth's own tables
+// (smooth_models.hpp); the initial state is the simulator's entry state of that run. Nothing is
+// modelled twice: a dispersion or a model change in the truth reaches the optimizer through
+// truth::Simulator::create. point_on_tables() evaluates the same rows on the truth's tables.
 //
 // Constraints, as the referee (truth::judge_mission) judges a flight:
 // - path, at every collocation point: heat flux, load factor (3.7), q and q alpha at most their
@@ -17,12 +18,12 @@
 //   interface bands, each normalised to its tolerance (<= 1 + s): range to the aim point
 //   (chord of the R_eq sphere, smoothed within 1e-3 of the tolerance around zero), altitude,
 //   Mach, flight-path angle, heading (sine of the error; its cosine kept positive).
-// Modes: kMinMiss minimises the range to the aim point with every other band and path
-// constraint hard (s relaxes the range band only: miss = (1 + s*) tolerance); kMaxMargin
-// minimises s over all of them (s* <= 0: feasible, and -s*
-// is the common margin, as a fraction of each limit or tolerance); the footprint modes
+// Modes: kMinMiss minimises the squared range to the aim point (in tolerances) with every other
+// band and path constraint hard; kMaxMargin minimises s over all of them (s* <= 0: feasible,
+// and -s* is the common margin, as a fraction of each limit or tolerance); the footprint modes
 // maximise or minimise the final downrange / crossrange (along / across the arrival line, as
-// truth::arrival_line_offset) with the heading free, the crossrange ones at a given downrange.
+// truth::arrival_line_offset) with the heading free, the crossrange ones at a given downrange,
+// the downrange ones on the arrival line (zero crossrange).
 #pragma once
 
 #include <cmath>
@@ -35,6 +36,7 @@
 #include "environment/interpolation.hpp"
 #include "hermite_simpson.hpp"
 #include "reentry/config/mission.hpp"
+#include "smooth_models.hpp"
 
 namespace reentry::optimal {
 
@@ -57,6 +59,14 @@ constexpr double kFootprintGlideMaxGamma_rad = 2.0 * M_PI / 180.0;
 /// With alpha free the solver seeks the vehicle's L/D max far from any flown profile and does
 /// not converge in 1000 iterations (X-33: 13000 km beyond the aim point, still rising).
 constexpr double kFootprintAlphaBand_rad = 3.0 * M_PI / 180.0;
+/// kMaxMargin: weight of the squared miss (in range tolerances) added to the objective. Every
+/// trajectory whose worst margin is the best one is optimal, the miss anywhere inside its band
+/// above that margin; this picks the one nearest the aim point (the band the open-loop replay
+/// tests hardest: its end lies tens to hundreds of metres from the collocated one). It lowers
+/// the common margin by at most this weight.
+constexpr double kMarginMissWeight = 0.01;
+/// The alpha profile's corners are rounded (C2) by at most this much (SmoothPiecewiseLinear).
+constexpr double kProfileCornerDeviation_rad = 0.1 * M_PI / 180.0;
 /// Footprint modes keep every path limit 1 % below its value at the collocation points.
 constexpr double kFootprintPathBackoff = 0.01;
 
@@ -72,8 +82,11 @@ class EntryProblem {
   /// margin and miss modes (the feasibility of a guidance that flies its profile and modulates
   /// alpha only that far); 0 leaves alpha free in [alpha_min, alpha_max]. The footprint modes
   /// always use kFootprintAlphaBand_rad.
+  /// `extent_limit_m` (footprint modes): the extreme sought at most this far (crossrange right
+  /// of the arrival line for kMaxCrossrange, left for kMinCrossrange, downrange beyond the aim
+  /// for kMaxDownrange, short of it for kMinDownrange): a step of the footprint's homotopy.
   EntryProblem(const truth::Simulator& sim, EntryMode mode, double tf_guess_s, double downrange_m = 0.0,
-               double alpha_band_rad = 0.0);
+               double alpha_band_rad = 0.0, double extent_limit_m = std::numeric_limits<double>::infinity());
 
   EntryMode mode() const { return mode_; }
   const truth::PointModel& model() const { return model_; }
@@ -84,6 +97,10 @@ class EntryProblem {
   int n_path() const { return static_cast<int>(path_rows_.size()); }
   int n_terminal() const { return static_cast<int>(terminal_rows_.size()); }
   double t0() const { return 0.0; }
+  /// With zonal gravity (central, J2-J4) the models are invariant under the Earth's rotation
+  /// about its axis (shape, gravity, atmosphere and wind by altitude), so the point rows of a
+  /// state in inertial coordinates do not depend on t; the sh20 field does.
+  bool time_invariant() const { return model_.gravity->model() != truth::GravityModel::kSphericalHarmonics; }
   void initial_state(double* x) const;
   void state_bounds(double* lo, double* hi) const;
   void control_bounds(double* lo, double* hi) const;
@@ -107,21 +124,19 @@ class EntryProblem {
   template <class T>
   T objective(const T* x, const T* u, const T* p) const;
 
-  /// The mission's alpha profile at normalised energy E/E_entry (linear, clamped at its ends).
+  /// The same point rows with the truth's own aerodynamic tables (double: the reference of the
+  /// model correction and of the fit checks).
+  void point_on_tables(double t, const double* x, const double* u, double* xdot, double* path) const {
+    point_with(TableAero{model_}, t, x, u, xdot, path);
+  }
+
+  /// The mission's alpha profile at normalised energy E/E_entry: the table (linear, held at its
+  /// ends) with its corners rounded by at most kProfileCornerDeviation_rad (C2, smooth_models.hpp).
   template <class T>
   T profile_alpha(const T& e_norm) const {
-    const auto& tab = mission_.alpha_profile;
-    const int n = static_cast<int>(tab.x.size());
-    if (n == 1) return T(tab.y[0]);
-    const int j = truth::detail::bracket(tab.x.data(), n, truth::scalar::value(e_norm));
-    const double x0 = tab.x[static_cast<size_t>(j)], x1 = tab.x[static_cast<size_t>(j + 1)];
-    const double y0 = tab.y[static_cast<size_t>(j)], y1 = tab.y[static_cast<size_t>(j + 1)];
-    const double w = (truth::scalar::value(e_norm) - x0) / (x1 - x0);
-    if (w <= 0.0) return T(y0);
-    if (w >= 1.0) return T(y1);
-    const T wt = (e_norm - x0) / (x1 - x0);
-    return y0 + (y1 - y0) * wt;
+    return profile_(e_norm);
   }
+  const SmoothAero& smooth_aero() const { return aero_; }
 
   /// Final-point quantities the terminal rows and the objectives use.
   template <class T>
@@ -130,15 +145,31 @@ class EntryProblem {
   };
   template <class T>
   Final<T> final_quantities(const T& t, const T* x, const T* u) const;
+  /// Footprint modes: the signed extent the objective maximises (m).
+  template <class T>
+  T extent(const Final<T>& f) const;
 
  private:
   enum class TermRow { kEnergy, kRange, kAltHigh, kAltLow, kMachHigh, kMachLow, kGammaHigh, kGammaLow, kHeadingPos,
-                       kHeadingNeg, kHeadingCos, kDownrange };
+                       kHeadingNeg, kHeadingCos, kDownrange, kCrossrange, kExtentLimit };
+  template <class T, class AeroAt>
+  void point_with(const AeroAt& aero_at, const T& t, const T* x, const T* u, T* xdot, T* path) const;
+  /// The truth's own aerodynamic tables, as evaluate_with takes them.
+  struct TableAero {
+    const truth::PointModel& m;
+    truth::AeroCoefficients operator()(double a, double mach, double q) const {
+      return m.aero->coefficients(a, mach, q, m.trim, m.cl_scale, m.cd_scale);
+    }
+  };
+
   const truth::PointModel& model_;
   const config::Mission& mission_;
+  SmoothAero aero_;
+  SmoothPiecewiseLinear profile_;
   EntryMode mode_;
   double tf_guess_s_;
   double downrange_m_;
+  double extent_limit_m_;
   double x0_[kStates] = {};
   double e_taem_ = 0.0;
   double skip_alt_m_ = 0.0;
@@ -158,8 +189,13 @@ class EntryProblem {
 
 template <class T>
 void EntryProblem::point(const T& t, const T* x, const T* u, T* xdot, T* path) const {
+  point_with(aero_, t, x, u, xdot, path);
+}
+
+template <class T, class AeroAt>
+void EntryProblem::point_with(const AeroAt& aero_at, const T& t, const T* x, const T* u, T* xdot, T* path) const {
   const truth::scalar::Vec3<T> r(x[0], x[1], x[2]), v(x[3], x[4], x[5]);
-  const truth::PointOutputs<T> o = model_.evaluate(t, r, v, u[0], u[1], true);
+  const truth::PointOutputs<T> o = model_.evaluate_with(aero_at, t, r, v, u[0], u[1], true);
   for (int i = 0; i < 3; ++i) {
     xdot[i] = x[3 + i];
     xdot[3 + i] = o.accel_I[i];
@@ -188,7 +224,7 @@ EntryProblem::Final<T> EntryProblem::final_quantities(const T& t, const T* x, co
   using std::atan2;
   using std::asin;
   const truth::scalar::Vec3<T> r(x[0], x[1], x[2]), v(x[3], x[4], x[5]);
-  const truth::PointOutputs<T> o = model_.evaluate(t, r, v, u[0], u[1], true);
+  const truth::PointOutputs<T> o = model_.evaluate_with(aero_, t, r, v, u[0], u[1], true);
   Final<T> f;
   f.energy = truth::PointModel::specific_energy(r, v);
   f.h = o.h_m;
@@ -220,9 +256,7 @@ EntryProblem::Final<T> EntryProblem::final_quantities(const T& t, const T* x, co
 template <class T>
 void EntryProblem::terminal(const T* x, const T* u, const T* p, T* psi) const {
   const Final<T> f = final_quantities(p[0], x, u);
-  // The margin s relaxes every band in kMaxMargin; in kMinMiss only the range (epigraph of the
-  // miss: minimise s subject to |chord| / tol <= 1 + s, the other bands hard).
-  const T& s_range = p[1];
+  // The margin s relaxes every band in kMaxMargin (the only mode with a range row).
   const T s = mode_ == EntryMode::kMaxMargin ? p[1] : T(0.0);
   const config::TaemInterface& tm = mission_.taem;
   for (size_t k = 0; k < terminal_rows_.size(); ++k) {
@@ -230,7 +264,7 @@ void EntryProblem::terminal(const T* x, const T* u, const T* p, T* psi) const {
       case TermRow::kEnergy: psi[k] = f.energy - e_taem_; break;
       case TermRow::kRange: {  // |chord| / tol, smoothed at zero
         using std::sqrt;
-        psi[k] = sqrt(f.chord2 + 1e-6 * chord_tol_ * chord_tol_) / chord_tol_ - s_range;
+        psi[k] = sqrt(f.chord2 + 1e-6 * chord_tol_ * chord_tol_) / chord_tol_ - s;
         break;
       }
       case TermRow::kAltHigh: psi[k] = (f.h - tm.altitude_m) / tm.altitude_tol_m - s; break;
@@ -243,15 +277,29 @@ void EntryProblem::terminal(const T* x, const T* u, const T* p, T* psi) const {
       case TermRow::kHeadingNeg: psi[k] = -f.heading_sin / sin_heading_tol_ - s; break;
       case TermRow::kHeadingCos: psi[k] = f.heading_cos; break;
       case TermRow::kDownrange: psi[k] = f.along; break;
+      case TermRow::kCrossrange: psi[k] = f.cross; break;
+      case TermRow::kExtentLimit: psi[k] = extent(f); break;
     }
+  }
+}
+
+template <class T>
+T EntryProblem::extent(const Final<T>& f) const {
+  switch (mode_) {
+    case EntryMode::kMaxDownrange: return f.along;
+    case EntryMode::kMinDownrange: return -f.along;
+    case EntryMode::kMaxCrossrange: return f.cross;
+    case EntryMode::kMinCrossrange: return -f.cross;
+    default: return T(0.0);
   }
 }
 
 template <class T>
 T EntryProblem::objective(const T* x, const T* u, const T* p) const {
   switch (mode_) {
-    case EntryMode::kMaxMargin:
-    case EntryMode::kMinMiss: return p[1];
+    case EntryMode::kMaxMargin:  // the miss centred as a secondary aim (its band is the one the replay tests hardest)
+      return p[1] + kMarginMissWeight * final_quantities(p[0], x, u).chord2 / (chord_tol_ * chord_tol_);
+    case EntryMode::kMinMiss: return final_quantities(p[0], x, u).chord2 / (chord_tol_ * chord_tol_);
     case EntryMode::kMaxDownrange: return -final_quantities(p[0], x, u).along / 1e6;
     case EntryMode::kMinDownrange: return final_quantities(p[0], x, u).along / 1e6;
     case EntryMode::kMaxCrossrange: return -final_quantities(p[0], x, u).cross / 1e5;

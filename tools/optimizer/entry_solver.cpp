@@ -1,6 +1,7 @@
 #include "entry_solver.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -16,6 +17,30 @@ size_t interval(const std::vector<double>& t, double tq, size_t hint) {
   while (i + 2 < t.size() && t[i + 1] < tq) ++i;
   return i;
 }
+// The flown commands (held between samples) averaged over each point's share of the time line,
+// [t_{j-1/2}, t_{j+1/2}], then made piecewise linear (a midpoint the mean of its nodes).
+std::vector<double> mean_commands(const std::vector<FlownSample>& flown, const std::vector<double>& tau, double tf) {
+  const int n = static_cast<int>(tau.size());
+  std::vector<double> u(static_cast<size_t>(2 * n), 0.0);
+  for (int j = 0; j < n; ++j) {
+    const double a = j == 0 ? 0.0 : 0.5 * (tau[static_cast<size_t>(j - 1)] + tau[static_cast<size_t>(j)]) * tf;
+    const double b = j == n - 1 ? tf : 0.5 * (tau[static_cast<size_t>(j)] + tau[static_cast<size_t>(j + 1)]) * tf;
+    double sum_a = 0.0, sum_s = 0.0, w = 0.0;
+    for (size_t i = 0; i + 1 < flown.size(); ++i) {
+      const double lo = std::max(a, flown[i].t_s), hi = std::min(b, flown[i + 1].t_s);
+      if (hi <= lo) continue;
+      sum_a += (hi - lo) * flown[i].alpha_rad;
+      sum_s += (hi - lo) * flown[i].sigma_rad;
+      w += hi - lo;
+    }
+    u[static_cast<size_t>(2 * j)] = w > 0.0 ? sum_a / w : flown.back().alpha_rad;
+    u[static_cast<size_t>(2 * j + 1)] = w > 0.0 ? sum_s / w : flown.back().sigma_rad;
+  }
+  for (int j = 1; j + 1 < n; j += 2)
+    for (int c = 0; c < 2; ++c)
+      u[static_cast<size_t>(2 * j + c)] = 0.5 * (u[static_cast<size_t>(2 * (j - 1) + c)] + u[static_cast<size_t>(2 * (j + 1) + c)]);
+  return u;
+}
 }  // namespace
 
 Trajectory guess_from_flown(const std::vector<FlownSample>& flown, const Mesh& mesh) {
@@ -29,76 +54,16 @@ Trajectory guess_from_flown(const std::vector<FlownSample>& flown, const Mesh& m
   for (double s : g.tau) {
     const double tq = s * tf;
     if (flown.size() < 2) {
-      for (int i = 0; i < 6; ++i) g.x.push_back(flown.front().y[static_cast<size_t>(i)]);
-      g.u.push_back(flown.front().alpha_rad);
-      g.u.push_back(flown.front().sigma_rad);
+      g.x.insert(g.x.end(), flown.front().y.begin(), flown.front().y.end());
       continue;
     }
     hint = interval(t, tq, hint);
     const FlownSample& a = flown[hint];
     const FlownSample& b = flown[hint + 1];
     const double w = b.t_s > a.t_s ? std::clamp((tq - a.t_s) / (b.t_s - a.t_s), 0.0, 1.0) : 0.0;
-    for (int i = 0; i < 6; ++i) g.x.push_back(a.y[static_cast<size_t>(i)] + w * (b.y[static_cast<size_t>(i)] - a.y[static_cast<size_t>(i)]));
-    // Commands are held between ticks: take the one in effect.
-    const FlownSample& c = w < 1.0 ? a : b;
-    g.u.push_back(c.alpha_rad);
-    g.u.push_back(c.sigma_rad);
+    for (size_t i = 0; i < 6; ++i) g.x.push_back(a.y[i] + w * (b.y[i] - a.y[i]));
   }
-  return g;
-}
-
-Trajectory consistent_guess_from_flown(truth::Simulator& sim, const std::vector<FlownSample>& flown, const Mesh& mesh) {
-  Trajectory raw = guess_from_flown(flown, mesh);
-  const int n = raw.points();
-  const double tf = raw.p[0];
-  // Mean flown command over each point's share [t_{j-1/2}, t_{j+1/2}] of the time line.
-  for (int j = 0; j < n; ++j) {
-    const double a = j == 0 ? 0.0 : 0.5 * (raw.tau[static_cast<size_t>(j - 1)] + raw.tau[static_cast<size_t>(j)]) * tf;
-    const double b = j == n - 1 ? tf : 0.5 * (raw.tau[static_cast<size_t>(j)] + raw.tau[static_cast<size_t>(j + 1)]) * tf;
-    double sum_a = 0.0, sum_s = 0.0, w = 0.0;
-    for (size_t i = 0; i + 1 < flown.size(); ++i) {
-      const double lo = std::max(a, flown[i].t_s), hi = std::min(b, flown[i + 1].t_s);
-      if (hi <= lo) continue;
-      sum_a += (hi - lo) * flown[i].alpha_rad;
-      sum_s += (hi - lo) * flown[i].sigma_rad;
-      w += hi - lo;
-    }
-    if (w > 0.0) {
-      raw.u[static_cast<size_t>(2 * j)] = sum_a / w;
-      raw.u[static_cast<size_t>(2 * j + 1)] = sum_s / w;
-    }
-  }
-  // Piecewise-linear controls (the midpoint the mean of its nodes, as linear_controls ties it).
-  for (int j = 1; j + 1 < n; j += 2)
-    for (int c = 0; c < 2; ++c)
-      raw.u[static_cast<size_t>(2 * j + c)] =
-          0.5 * (raw.u[static_cast<size_t>(2 * (j - 1) + c)] + raw.u[static_cast<size_t>(2 * (j + 1) + c)]);
-  // Fly it open loop and take the states of that flight.
-  const double rate = sim.mission().guidance.gnc_rate_hz > 0.0 ? sim.mission().guidance.gnc_rate_hz : 10.0;
-  const double dt = 1.0 / rate;
-  std::vector<FlownSample> open;
-  const auto max_ticks = static_cast<long long>(std::ceil(sim.settings().time_limit_s / dt)) + 2;
-  for (long long k = 0; k < max_ticks && !sim.finished(); ++k) {
-    double al = 0.0, si = 0.0;
-    control_at(raw, (static_cast<double>(k) + 0.5) * dt, &al, &si);
-    sim.set_command(al, si);
-    FlownSample f;
-    f.t_s = sim.time_s();
-    for (size_t i = 0; i < 6; ++i) f.y[i] = sim.state()[i];
-    f.alpha_rad = al;
-    f.sigma_rad = si;
-    open.push_back(f);
-    sim.advance_to(static_cast<double>(k + 1) * dt);
-  }
-  if (sim.event() != truth::SimEvent::kTaemEnergy || open.size() < 2) return raw;
-  FlownSample last = open.back();
-  last.t_s = sim.time_s();
-  for (size_t i = 0; i < 6; ++i) last.y[i] = sim.state()[i];
-  open.push_back(last);
-  Trajectory g = guess_from_flown(open, mesh);
-  // Controls as functions of time on the new t_f.
-  for (int j = 0; j < n; ++j) control_at(raw, g.tau[static_cast<size_t>(j)] * g.p[0], &g.u[static_cast<size_t>(2 * j)],
-                                          &g.u[static_cast<size_t>(2 * j + 1)]);
+  g.u = mean_commands(flown, g.tau, tf);
   return g;
 }
 
@@ -160,39 +125,96 @@ EntryFigures evaluate_figures(const EntryProblem& pb, const Trajectory& tr) {
   return f;
 }
 
-EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Trajectory& guess,
-                        const EntrySolveOptions& options, double downrange_m) {
-  EntryResult r;
-  r.mode = mode;
-  if (guess.points() != 2 * options.segments + 1 || guess.p.size() != 2) {
-    r.error = "initial guess does not match the mesh";
-    return r;
-  }
-  const EntryProblem pb(sim, mode, guess.p[0], downrange_m, options.alpha_band_rad);
+namespace {
+// The margin (or miss) parameter of the start: the guess's largest normalised violation plus a
+// little, so every margin row starts feasible.
+Trajectory with_margin_start(const EntryProblem& pb, const Trajectory& guess) {
   Trajectory start = guess;
-  if (mode == EntryMode::kMaxMargin) {
-    // Start s at the guess's largest normalised violation, so the margin rows start feasible.
-    const EntryFigures g = evaluate_figures(pb, guess);
+  const EntryFigures g = evaluate_figures(pb, guess);
+  if (pb.mode() == EntryMode::kMaxMargin) {
     double worst = -1.0;
     for (double m : {g.margin_heat_flux, g.margin_load, g.margin_q, g.margin_q_alpha, g.margin_altitude, g.margin_mach,
-                     g.margin_gamma, g.margin_heading})
+                     g.margin_gamma, g.margin_heading, g.margin_range})
       if (std::isfinite(m)) worst = std::max(worst, -m);
-    if (std::isfinite(g.margin_range)) worst = std::max(worst, -g.margin_range);
     start.p[1] = std::clamp(worst + 0.05, -0.95, 99.0);
-  } else if (mode == EntryMode::kMinMiss) {
-    const EntryFigures g = evaluate_figures(pb, guess);
-    start.p[1] = std::clamp(g.miss_m / pb.mission().taem.range_tol_m - 1.0 + 0.05, -0.9, 1e4);
   } else {
     start.p[1] = 0.0;
   }
-  const Mesh mesh{[&] {
-    std::vector<double> nodes;
-    for (size_t j = 0; j < guess.tau.size(); j += 2) nodes.push_back(guess.tau[j]);
-    return nodes;
-  }()};
-  r.solution = solve(pb, mesh, start, options.solver);
+  return start;
+}
+
+// A warm re-solve on a refined mesh or with a new model correction starts at the last solution:
+// a smaller barrier keeps it there.
+SolverOptions warm(SolverOptions o) {
+  o.mu_init = std::min(o.mu_init, 1e-6);
+  return o;
+}
+}  // namespace
+
+EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Trajectory& guess,
+                        const EntrySolveOptions& options, double downrange_m) {
+  const auto t0 = std::chrono::steady_clock::now();
+  EntryResult r;
+  r.mode = mode;
+  if (guess.points() < 3 || guess.points() % 2 == 0 || guess.p.size() != 2) {
+    r.error = "initial guess does not match a mesh";
+    return r;
+  }
+  const EntryProblem pb(sim, mode, guess.p[0], downrange_m, options.alpha_band_rad, options.extent_limit_m);
+  const RefinementOptions& ro = options.refinement;
+  Mesh mesh = Mesh::of_points(guess.tau);
+  Trajectory start = with_margin_start(pb, guess);
+  for (int k = 0; k < ro.a_priori_passes; ++k) {  // where the start's own local errors are largest
+    mesh = refine_mesh(mesh, local_errors_m(pb, start, ro.substeps), ro.a_priori_reduction, ro.max_segments);
+    start = interpolate(pb, start, mesh);
+  }
+  // The model correction of the first solve is taken at the start (the optimum lies near it).
+  PointBias bias = ro.model_correction ? model_bias(pb, start) : PointBias{};
+  for (int pass = 0; pass <= ro.max_passes; ++pass) {
+    const Solution s = solve(pb, mesh, start, pass == 0 ? options.solver : warm(options.solver), bias.f.empty() ? nullptr : &bias);
+    MeshPass mp{mesh.segments(), s.status, s.iterations, s.wall_s, 0.0, !bias.f.empty()};
+    const bool ok = converged(s.status);
+    if (ok || pass == 0) r.solution = s;
+    if (ok) mp.end_error_m = table_flight_end_error_m(pb, s.trajectory, ro.substeps);
+    r.passes.push_back(mp);
+    if (!ok || pass == ro.max_passes || mp.end_error_m <= ro.end_error_target_m) break;
+    const double reduction = mp.end_error_m / ro.end_error_target_m;
+    mesh = refine_mesh(mesh, local_errors_m(pb, s.trajectory, ro.substeps), reduction, ro.max_segments);
+    start = interpolate(pb, s.trajectory, mesh);
+    if (ro.model_correction) bias = model_bias(pb, start);
+  }
   r.figures = evaluate_figures(pb, r.solution.trajectory);
+  r.figures.regularisation = mode == EntryMode::kMaxMargin && r.solution.trajectory.p.size() == 2
+                                 ? r.solution.objective - r.solution.trajectory.p[1]
+                                 : std::numeric_limits<double>::quiet_NaN();
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
+}
+
+nlohmann::json result_json(const EntryResult& r) {
+  using nlohmann::json;
+  constexpr double kDeg = 180.0 / M_PI;
+  const EntryFigures& f = r.figures;
+  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json passes = json::array();
+  for (const MeshPass& p : r.passes)
+    passes.push_back({{"segments", p.segments}, {"status", to_string(p.status)}, {"iterations", p.iterations},
+                      {"wall_s", p.wall_s}, {"end_error_m", p.end_error_m}, {"model_corrected", p.corrected}});
+  return {{"status", to_string(r.solution.status)}, {"ipopt_status", r.solution.ipopt_status},
+          {"iterations", r.solution.iterations}, {"wall_s", r.wall_s}, {"segments", r.segments()}, {"passes", passes},
+          {"tf_s", f.tf_s}, {"margin", num(f.margin)}, {"regularisation", num(f.regularisation)},
+          {"miss_km", f.miss_m * 1e-3}, {"along_km", f.along_m * 1e-3}, {"cross_km", f.cross_m * 1e-3},
+          {"altitude_err_km", f.altitude_err_m * 1e-3}, {"mach", f.mach}, {"gamma_deg", f.gamma_rad * kDeg},
+          {"heading_err_deg", f.heading_err_rad * kDeg}, {"final_lat_deg", f.final_lat_rad * kDeg},
+          {"final_lon_deg", f.final_lon_rad * kDeg}, {"max_heat_flux_kW_m2", f.max_heat_flux_Wpm2 * 1e-3},
+          {"max_g", f.max_load_g}, {"max_q_kPa", f.max_q_Pa * 1e-3},
+          {"max_q_alpha_kPa_deg", f.max_q_alpha_Pa_rad * 1e-3 * kDeg},
+          {"margins",
+           {{"heat_flux", num(f.margin_heat_flux)}, {"load_factor", num(f.margin_load)},
+            {"dynamic_pressure", num(f.margin_q)}, {"q_alpha", num(f.margin_q_alpha)}, {"range", num(f.margin_range)},
+            {"altitude", num(f.margin_altitude)}, {"mach", num(f.margin_mach)}, {"flight_path", num(f.margin_gamma)},
+            {"heading", num(f.margin_heading)}}},
+          {"all_satisfied", f.all_satisfied}};
 }
 
 std::vector<TrackPoint> track(const EntryProblem& pb, const Trajectory& tr) {

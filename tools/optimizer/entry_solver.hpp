@@ -5,13 +5,17 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "dynamics/simulator.hpp"
 #include "entry_problem.hpp"
 #include "evaluation/mission_verdict.hpp"
 #include "hermite_simpson.hpp"
+#include "mesh_refinement.hpp"
 
 namespace reentry::optimal {
 
@@ -22,27 +26,34 @@ struct FlownSample {
   double alpha_rad = 0.0, sigma_rad = 0.0;
 };
 
-/// Settings of an entry solve (defaults: the figures in tools/optimizer/README.md).
+/// Settings of an entry solve.
 struct EntrySolveOptions {
-  // Hermite-Simpson segments, uniform in time: 100 (15-25 s) keeps the open-loop replay of a
-  // solution within tens to hundreds of metres of the collocated end point; 60-80 lose
-  // kilometres on HORUS.
-  int segments = 100;
+  // Hermite-Simpson segments of the first solve, uniform in time; refinement adds segments
+  // where the local error is largest (mesh_refinement.hpp).
+  int segments = 80;
   /// > 0: alpha within this band of the mission's alpha profile (EntryProblem); 0: free.
   double alpha_band_rad = 0.0;
   SolverOptions solver = default_solver();
-  /// The truth models interpolate tables bilinearly: linear in alpha (and Mach) inside each
-  /// cell, so the exact Hessian has no curvature where the real curvature sits (the cell
-  /// edges) and IPOPT's Newton steps overshoot and cycle (measured: 3 of 3 nominal missions
-  /// fail or stall at 300 iterations); the limited-memory quasi-Newton Hessian, built from
-  /// secants across cells, converges in all of them. Piecewise-linear controls: the free
-  /// Hermite-Simpson midpoint control zig-zags and its open-loop replay missed by 150-350 km.
+  RefinementOptions refinement;
+  /// Footprint modes: EntryProblem's extent limit (a step of the footprint's homotopy).
+  double extent_limit_m = std::numeric_limits<double>::infinity();
+  /// Newton on the exact Hessian of the Lagrangian (second-order AD of the smooth models),
+  /// piecewise-linear controls (the free Hermite-Simpson midpoint control zig-zags and its
+  /// open-loop replay missed by 150-350 km). A warm start sits next to the optimum, so the
+  /// barrier starts small (with IPOPT's 0.1, or 1e-3, the barrier terms of the ~600 path rows
+  /// coupled to the margin outweigh the objective and push the margin the wrong way for tens of
+  /// iterations). The max-min objective has many optima (every control history that keeps the
+  /// binding constraints where they are): a small proximity term picks the one closest to the
+  /// start, which keeps the Hessian regular there.
   static SolverOptions default_solver() {
     SolverOptions s;
-    s.exact_hessian = false;
+    s.exact_hessian = true;
     s.linear_controls = true;
-    s.max_iterations = 1000;
-    s.max_wall_s = 120.0;
+    s.mu_init = 1e-5;
+    s.control_proximity = 3e-2;
+    s.constr_mult_init_max = 0.0;
+    s.max_iterations = 500;
+    s.max_wall_s = 60.0;
     return s;
   }
 };
@@ -51,6 +62,9 @@ struct EntrySolveOptions {
 struct EntryFigures {
   double tf_s = 0.0;
   double margin = 0.0;                    // -s (kMaxMargin): common margin, fraction of each limit/tolerance; NaN otherwise
+  /// kMaxMargin: the objective's secondary terms at the solution (control proximity, the miss):
+  /// what they may have cost the margin. NaN otherwise.
+  double regularisation = 0.0;
   double miss_m = 0.0, along_m = 0.0, cross_m = 0.0;
   double altitude_err_m = 0.0, mach = 0.0, gamma_rad = 0.0, heading_err_rad = 0.0;
   double final_lat_rad = 0.0, final_lon_rad = 0.0;  // geocentric, of the final point
@@ -67,28 +81,28 @@ struct EntryFigures {
 struct EntryResult {
   std::string error;           // set when the problem could not be set up
   EntryMode mode = EntryMode::kMinMiss;
-  Solution solution;
+  Solution solution;           // the last converged solve (or the first solve when none converged)
   EntryFigures figures;
+  std::vector<MeshPass> passes;  // every solve of the refinement sequence
+  double wall_s = 0.0;           // all of them, with the error estimates
+  int segments() const { return (solution.trajectory.points() - 1) / 2; }
 };
 
 /// The initial guess on `mesh` interpolated (linearly in time) from a flown trajectory that
 /// ends at the TAEM event: t_f = the last sample's time.
 Trajectory guess_from_flown(const std::vector<FlownSample>& flown, const Mesh& mesh);
 
-/// A dynamically consistent initial guess from a flown trajectory: the flown command averaged
-/// over each collocation point's share of the mesh, flown open loop (linear between the points,
-/// as the transcription's controls) in `sim` (a fresh simulator of the same run) to the TAEM
-/// event; the states are that flight's. So the guess violates the collocation equations only by
-/// their discretisation error, and IPOPT starts next to a trajectory instead of ~100 m from
-/// one. Falls back to guess_from_flown when the open-loop flight ends otherwise.
-Trajectory consistent_guess_from_flown(truth::Simulator& sim, const std::vector<FlownSample>& flown, const Mesh& mesh);
-
-/// Solves one run's problem. `sim` is the run's simulator right after create().
+/// Solves one run's problem from `guess` (its mesh: every other point a node), then corrects the
+/// models and refines the mesh (mesh_refinement.hpp). `sim` is the run's simulator right after
+/// create().
 EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Trajectory& guess,
                         const EntrySolveOptions& options, double downrange_m = 0.0);
 
 /// Figures of a trajectory of `problem` (double evaluation of the same functions).
 EntryFigures evaluate_figures(const EntryProblem& problem, const Trajectory& trajectory);
+
+/// A solve for the record: status, iterations, wall time, its mesh passes and the figures.
+nlohmann::json result_json(const EntryResult& r);
 
 /// The trajectory's points in the referee's terms (one per collocation point).
 struct TrackPoint {

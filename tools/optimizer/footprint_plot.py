@@ -17,16 +17,34 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def converged(p):
+    return p["status"] in ("optimal", "acceptable")
+
+
 def boundary(points):
-    """The reached extremal points (flown open loop within every path limit) in order around the footprint: max crossrange from the far
-    end inwards, then min crossrange from the near end outwards."""
+    """The reached extremal points (flown open loop within every path limit) in order around the
+    footprint: max crossrange from the far end inwards, min downrange, min crossrange from the
+    near end outwards, max downrange."""
     ok = [p for p in points if p.get("replay", {}).get("reached")]
-    for p in ok:  # the point the open-loop flight reached (the solve's own end point when converged)
+    for p in ok:  # the point the open-loop flight reached
         p["along_km"], p["cross_km"] = p["replay"]["along_km"], p["replay"]["cross_km"]
-    left = sorted([p for p in ok if p["mode"] == "max_crossrange"], key=lambda p: -p["downrange_target_km"])
-    right = sorted([p for p in ok if p["mode"] == "min_crossrange"], key=lambda p: p["downrange_target_km"])
-    ring = left + right
+        p["final_lat_deg"], p["final_lon_deg"] = p["replay"]["final_lat_deg"], p["replay"]["final_lon_deg"]
+    top = sorted([p for p in ok if p["mode"] == "max_crossrange"], key=lambda p: -p["downrange_target_km"])
+    bottom = sorted([p for p in ok if p["mode"] == "min_crossrange"], key=lambda p: p["downrange_target_km"])
+    near = [p for p in ok if p["mode"] == "min_downrange"]
+    far = [p for p in ok if p["mode"] == "max_downrange"]
+    ring = top + near + bottom + far
     return ring + ring[:1] if ring else ring
+
+
+def inside(ring, x, y):
+    """Point in the closed polygon `ring` (even-odd rule) in the arrival-line frame."""
+    pts = [(p["along_km"], p["cross_km"]) for p in ring[:-1]]
+    hit = False
+    for (x0, y0), (x1, y1) in zip(pts, pts[1:] + pts[:1]):
+        if (y0 > y) != (y1 > y) and x < x0 + (y - y0) * (x1 - x0) / (y1 - y0):
+            hit = not hit
+    return hit
 
 
 def unwrap(lon, ref):
@@ -77,11 +95,19 @@ def main(out_dir):
     a = [2 * math.pi * k / 100 for k in range(101)]
     bx.plot([tol * math.cos(x) for x in a], [tol * math.sin(x) for x in a], "r-", lw=1, label=f"range tolerance {tol:g} km")
     bx.plot(0, 0, "r*", ms=14, label="aim point")
+    failed = [p for p in doc["points"] if not converged(p) and p.get("replay", {}).get("reached")]
+    if failed:
+        bx.plot([p["replay"]["along_km"] for p in failed], [p["replay"]["cross_km"] for p in failed], "rx", ms=9, mew=2,
+                label="solve not converged (reached, inner bound)")
     bx.set_xlabel("along the arrival line [km] (> 0 long)")
     bx.set_ylabel("across [km] (> 0 right)")
     n = len(doc["points"])
-    n_conv = sum(p["status"] in ("optimal", "acceptable") for p in doc["points"])
-    bx.set_title(f"TAEM points reached open loop ({n_conv} of {n} solves converged, the rest inner bounds)", fontsize=10)
+    n_conv = sum(converged(p) for p in doc["points"])
+    aim_in = bool(ring) and inside(ring, 0.0, 0.0)
+    bx.set_title(f"TAEM points reached open loop: {n_conv} of {n} solves converged; aim point "
+                 f"{'inside' if aim_in else 'OUTSIDE'}; {doc['footprint_wall_s']:.0f} s", fontsize=10)
+    print(f"{doc['mission']}: {n_conv} of {n} solves converged, aim point {'inside' if aim_in else 'outside'}, "
+          f"footprint wall time {doc['footprint_wall_s']:.0f} s")
     bx.grid(True, alpha=0.3)
     bx.axis("equal")
     bx.legend(fontsize=8)

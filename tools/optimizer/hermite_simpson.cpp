@@ -26,6 +26,12 @@ Mesh Mesh::uniform(int segments) {
   return m;
 }
 
+Mesh Mesh::of_points(const std::vector<double>& point_tau) {
+  Mesh m;
+  for (size_t j = 0; j < point_tau.size(); j += 2) m.tau.push_back(point_tau[j]);
+  return m;
+}
+
 std::vector<double> Mesh::point_tau() const {
   std::vector<double> t;
   const int n = segments();
@@ -75,8 +81,31 @@ SolveStatus map_status(Ipopt::SolverReturn s) {
   }
 }
 
-void configure(Ipopt::IpoptApplication& app, const SolverOptions& o) {
+namespace {
+// One IPOPT option from its text, by the type IPOPT registered for it. false: unknown option or
+// a value of the wrong kind.
+bool set_option(Ipopt::IpoptApplication& app, const std::string& name, const std::string& value) {
+  Ipopt::SmartPtr<const Ipopt::RegisteredOption> reg = app.RegOptions()->GetOption(name);
+  if (!Ipopt::IsValid(reg)) return false;
   Ipopt::OptionsList& op = *app.Options();
+  char* stop = nullptr;
+  switch (reg->Type()) {
+    case Ipopt::OT_Number: {
+      const double v = std::strtod(value.c_str(), &stop);
+      return !value.empty() && *stop == '\0' && op.SetNumericValue(name, v);
+    }
+    case Ipopt::OT_Integer: {
+      const long v = std::strtol(value.c_str(), &stop, 10);
+      return !value.empty() && *stop == '\0' && op.SetIntegerValue(name, static_cast<Ipopt::Index>(v));
+    }
+    default: return op.SetStringValue(name, value);
+  }
+}
+}  // namespace
+
+bool configure(Ipopt::IpoptApplication& app, const SolverOptions& o, bool warm_duals) {
+  Ipopt::OptionsList& op = *app.Options();
+  bool ok = true;
   op.SetIntegerValue("print_level", o.print_level);
   op.SetStringValue("sb", "yes");  // no banner
   op.SetIntegerValue("max_iter", o.max_iterations);
@@ -92,34 +121,20 @@ void configure(Ipopt::IpoptApplication& app, const SolverOptions& o) {
   op.SetNumericValue("mu_init", o.mu_init);
   op.SetNumericValue("bound_push", o.bound_push);
   op.SetNumericValue("bound_frac", o.bound_push);
-  // Development: extra IPOPT options "name=value,name=value" (numbers, integers or strings).
-  if (const char* extra = std::getenv("REENTRY_IPOPT_OPTIONS")) {
-    std::string all(extra);
-    size_t start = 0;
-    while (start < all.size()) {
-      size_t end = all.find(',', start);
-      if (end == std::string::npos) end = all.size();
-      const std::string item = all.substr(start, end - start);
-      const size_t eq = item.find('=');
-      if (eq != std::string::npos) {
-        const std::string name = item.substr(0, eq), value = item.substr(eq + 1);
-        char* stop = nullptr;
-        const double v = std::strtod(value.c_str(), &stop);
-        if (stop && *stop == '\0' && !value.empty()) {
-          if (value.find_first_of(".eE") == std::string::npos) op.SetIntegerValue(name, static_cast<int>(v));
-          else op.SetNumericValue(name, v);
-        } else {
-          op.SetStringValue(name, value);
-        }
-      }
-      start = end + 1;
-    }
+  op.SetNumericValue("constr_mult_init_max", o.constr_mult_init_max);
+  if (warm_duals) {  // primal and dual start from a solve of the same NLP: stay there
+    op.SetStringValue("warm_start_init_point", "yes");
+    op.SetNumericValue("warm_start_bound_push", o.bound_push);
+    op.SetNumericValue("warm_start_bound_frac", o.bound_push);
+    op.SetNumericValue("warm_start_mult_bound_push", o.bound_push);
   }
-  if (const char* t = std::getenv("REENTRY_IPOPT_DERIVATIVE_TEST")) {  // development: IPOPT's own checker
-    op.SetStringValue("derivative_test", t);
+  for (const auto& [name, value] : o.ipopt_options) ok = set_option(app, name, value) && ok;
+  if (!o.derivative_test.empty()) {  // IPOPT's own derivative checker
+    op.SetStringValue("derivative_test", o.derivative_test);
     op.SetNumericValue("derivative_test_perturbation", 1e-7);
     op.SetNumericValue("derivative_test_tol", 1e-3);
   }
+  return ok;
 }
 
 }  // namespace detail

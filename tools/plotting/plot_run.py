@@ -4,9 +4,12 @@
 usage: plot_run.py RUN_DIR [--log FILE] [--csv DIR] [--out DIR]
 
 Reads RUN_DIR/run_csv/*.csv (running tools/log2csv on RUN_DIR/run.lcm first when the folder is
-missing) and RUN_DIR/summary.json when present, and writes PNG files to RUN_DIR/plots/.
-A plot whose channels are missing is skipped with a warning; the exit status is 0 when at least
-one plot was written.
+missing or older than the log: the CSV files are always those of the log) and RUN_DIR/summary.json
+when present, and writes PNG files to RUN_DIR/plots/ (its earlier plots removed first: no plot of
+another run stays). A plot whose channels are missing is skipped with a warning. Exit status (the
+table in tools/README.md): 0 at least one plot written, 2 nothing to plot (no log, no TRUTH), 8 a
+CSV or PNG file could not be written (file and reason named), 11 a column this script asks for is
+not in the message definitions.
 
 Optional summary.json keys used:
   entry_energy_Jpkg                       normalisation energy (else the first TRUTH energy)
@@ -47,6 +50,13 @@ MU_M3PS2 = 3.986004418e14
 RHO0_KGPM3 = 1.225
 SCALE_HEIGHT_M = 7050.0
 DPI = 120
+PLOTS = ("ground_track.png", "altitude_velocity.png", "drag_energy.png", "bank_alpha.png", "gamma_energy.png",
+         "constraints_time.png", "tracker_status.png")
+EXIT_USAGE, EXIT_WRITE_FAILED, EXIT_RUN_ERROR = 2, 8, 11
+
+
+class WriteFailed(Exception):
+    """An output file could not be written whole."""
 
 
 def warn(msg):
@@ -112,7 +122,11 @@ def style(ax, xlabel, ylabel, title=None, legend=True):
 def save(fig, out_dir, name, made):
     path = os.path.join(out_dir, name)
     fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
+    try:
+        fig.savefig(path, dpi=DPI)
+    except OSError as exc:
+        plt.close(fig)
+        raise WriteFailed(f"{path}: {exc.strerror or exc}") from exc
     plt.close(fig)
     made.append(path)
     print(f"plot_run: wrote {path}")
@@ -352,27 +366,32 @@ def plot_tracker_status(tracker, summary, out_dir, made):
     save(fig, out_dir, "tracker_status.png", made)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("run_dir")
-    ap.add_argument("--log", help="log file (default RUN_DIR/run.lcm)")
-    ap.add_argument("--csv", help="CSV folder (default RUN_DIR/run_csv)")
-    ap.add_argument("--out", help="plot folder (default RUN_DIR/plots)")
-    args = ap.parse_args()
-    run_dir = args.run_dir
-    csv_dir = args.csv or os.path.join(run_dir, "run_csv")
-    out_dir = args.out or os.path.join(run_dir, "plots")
-    if not os.path.isdir(csv_dir):
-        log = args.log or os.path.join(run_dir, "run.lcm")
-        if not os.path.isfile(log):
-            print(f"plot_run: error: neither {csv_dir} nor {log} exists", file=sys.stderr)
-            return 2
-        log2csv = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "log2csv")
-        rc = subprocess.call([log2csv, log, "--out", csv_dir])
-        if rc != 0:
-            print(f"plot_run: error: log2csv failed with status {rc}", file=sys.stderr)
-            if not os.path.isdir(csv_dir):
-                return 2
+def csv_of_log(run_dir, log_arg, csv_dir):
+    """The CSV files of the log: converted when missing or older than the log. None or the exit status."""
+    log = log_arg or os.path.join(run_dir, "run.lcm")
+    have_log = os.path.isfile(log)
+    if os.path.isdir(csv_dir):
+        csvs = [os.path.join(csv_dir, n) for n in os.listdir(csv_dir) if n.endswith(".csv")]
+        if not have_log or not csvs or min(os.path.getmtime(c) for c in csvs) >= os.path.getmtime(log):
+            return None
+        for c in csvs:  # the CSV files of another log
+            os.remove(c)
+    elif not have_log:
+        print(f"plot_run: nothing to plot: neither {csv_dir} nor {log} exists", file=sys.stderr)
+        return EXIT_USAGE
+    log2csv = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "log2csv")
+    rc = subprocess.call([log2csv, log, "--out", csv_dir])
+    if rc == EXIT_WRITE_FAILED:
+        print(f"plot_run: write failed: the CSV files of {log} in {csv_dir}", file=sys.stderr)
+        return EXIT_WRITE_FAILED
+    if rc != 0:
+        print(f"plot_run: warning: log2csv exited with status {rc}", file=sys.stderr)
+        if not os.path.isdir(csv_dir):
+            return EXIT_USAGE
+    return None
+
+
+def read_summary(run_dir):
     summary = {}
     spath = os.path.join(run_dir, "summary.json")
     if os.path.isfile(spath):
@@ -383,9 +402,13 @@ def main():
             warn(f"cannot read {spath}: {exc}")
         if not isinstance(summary, dict):
             summary = {}
+    return summary
+
+
+def make_plots(csv_dir, summary, out_dir):
+    """Every plot the channels allow; the paths written."""
     truth, cmd, points, tracker = (read_channel(csv_dir, ch)
                                    for ch in ("TRUTH", "GUIDANCE_CMD", "PLAN_points", "TRACKER_STATUS"))
-    os.makedirs(out_dir, exist_ok=True)
     made = []
     jobs = [("ground_track", lambda: plot_ground_track(truth, summary, out_dir, made)),
             ("altitude_velocity", lambda: plot_altitude_velocity(truth, summary, out_dir, made)),
@@ -410,9 +433,37 @@ def main():
         except KeyError as exc:
             warn(f"{name}.png skipped: column {exc} missing")
             plt.close("all")
+    return made
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run_dir")
+    ap.add_argument("--log", help="log file (default RUN_DIR/run.lcm)")
+    ap.add_argument("--csv", help="CSV folder (default RUN_DIR/run_csv)")
+    ap.add_argument("--out", help="plot folder (default RUN_DIR/plots)")
+    args = ap.parse_args()
+    run_dir = args.run_dir
+    csv_dir = args.csv or os.path.join(run_dir, "run_csv")
+    out_dir = args.out or os.path.join(run_dir, "plots")
+    try:
+        rc = csv_of_log(run_dir, args.log, csv_dir)
+        if rc is not None:
+            return rc
+        os.makedirs(out_dir, exist_ok=True)
+        for name in PLOTS:  # the plots of an earlier run
+            if os.path.exists(os.path.join(out_dir, name)):
+                os.remove(os.path.join(out_dir, name))
+        made = make_plots(csv_dir, read_summary(run_dir), out_dir)
+    except WriteFailed as exc:
+        print(f"plot_run: write failed: {exc}", file=sys.stderr)
+        return EXIT_WRITE_FAILED
+    except OSError as exc:
+        print(f"plot_run: write failed: {exc.filename}: {exc.strerror}", file=sys.stderr)
+        return EXIT_WRITE_FAILED
     if not made:
-        print("plot_run: error: no plot could be made", file=sys.stderr)
-        return 1
+        print("plot_run: nothing to plot: no plot could be made", file=sys.stderr)
+        return EXIT_USAGE
     print(f"plot_run: {len(made)} plot(s) in {out_dir}")
     return 0
 
@@ -421,5 +472,5 @@ if __name__ == "__main__":
     try:
         sys.exit(main())
     except SchemaError as exc:  # a column this script asks for is not in the message definitions
-        print(f"plot_run: error: {exc}", file=sys.stderr)
-        sys.exit(3)
+        print(f"plot_run: plotting failed: {exc}", file=sys.stderr)
+        sys.exit(EXIT_RUN_ERROR)

@@ -16,6 +16,7 @@
 #include <reentry/nav_state_t.hpp>
 
 #include "nav/relative_state.hpp"
+#include "physics/earth_constants.hpp"
 #include <nlohmann/json.hpp>
 
 #include <reentry/config/mission.hpp>
@@ -23,7 +24,7 @@
 #include "planner/entry_planner.hpp"
 
 namespace {
-constexpr double kRadToDeg = 180.0 / M_PI;
+using reentry::physics::kDegPerRad;
 
 bool write_profile_csv(const std::string& path, const reentry::fsw::ReferenceProfile& p) {
   std::ofstream out(path);
@@ -35,75 +36,46 @@ bool write_profile_csv(const std::string& path, const reentry::fsw::ReferencePro
     out << p.energy_Jpkg[k] << ',' << p.e_norm[k] << ',' << p.drag_mps2[k] << ',' << p.drag_prime[k] << ','
         << p.drag_second[k] << ',' << p.a_coef[k] << ',' << p.b_coef[k] << ','
         << p.radius_m[k] - reentry::fsw::kEarthRadius_m << ',' << p.velocity_mps[k] << ','
-        << p.gamma_rad[k] * kRadToDeg << ',' << p.alpha_rad[k] * kRadToDeg << ',' << p.lift_over_drag[k] << ','
-        << p.sigma_rad[k] * kRadToDeg << ',' << p.heading_rad[k] * kRadToDeg << ',' << p.dynamic_pressure_Pa[k] << '\n';
+        << p.gamma_rad[k] * kDegPerRad << ',' << p.alpha_rad[k] * kDegPerRad << ',' << p.lift_over_drag[k] << ','
+        << p.sigma_rad[k] * kDegPerRad << ',' << p.heading_rad[k] * kDegPerRad << ',' << p.dynamic_pressure_Pa[k] << '\n';
   }
   return static_cast<bool>(out);
 }
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"Plan a reference drag/bank profile from the mission's entry interface (thesis ch. 7)"};
-  std::string mission_arg, profile_out, drag_profile, initial_drag;
-  app.add_option("--mission", mission_arg, "mission name (x33, horus, ...) or path to a .toml file")->required();
-  app.add_option("--profile-out", profile_out, "write the planned profile as CSV");
-  std::string from_log;
+struct Options {
+  std::string mission_arg, profile_out, drag_profile, initial_drag, from_log;
   long long from_tick = -1;
-  app.add_option("--from-log", from_log, "plan from a logged NAV_STATE instead of the entry interface (with --tick)");
-  app.add_option("--tick", from_tick, "tick of the NAV_STATE in --from-log");
-  app.add_option("--drag-profile", drag_profile, "three_segment or smooth (default: mission file)")
-      ->check(CLI::IsMember({"three_segment", "smooth"}));
-  app.add_option("--initial-drag", initial_drag, "actual or lmin (default: mission file)")
-      ->check(CLI::IsMember({"actual", "lmin"}));
-  CLI11_PARSE(app, argc, argv);
+};
 
-  reentry::config::LoadResult loaded = reentry::config::load_mission(mission_arg);
-  if (!loaded.ok) {
-    std::cerr << "reentry_plan: " << loaded.error << '\n';
-    return 2;
-  }
-  reentry::config::Mission& mission = loaded.mission;
-  if (!drag_profile.empty()) mission.guidance.drag_profile = drag_profile;
-  if (!initial_drag.empty()) mission.guidance.initial_drag = initial_drag;
-  const std::string alpha_error = reentry::fsw::resolve_alpha_profile(mission);
-  if (!alpha_error.empty()) {
-    std::cerr << "reentry_plan: " << alpha_error << '\n';
-    return 2;
-  }
+/// The mission with the command line's overrides and its alpha profile resolved; "" or the error.
+std::string load_mission(const Options& o, reentry::config::Mission& mission) {
+  reentry::config::LoadResult loaded = reentry::config::load_mission(o.mission_arg);
+  if (!loaded.ok) return loaded.error;
+  mission = std::move(loaded.mission);
+  if (!o.drag_profile.empty()) mission.guidance.drag_profile = o.drag_profile;
+  if (!o.initial_drag.empty()) mission.guidance.initial_drag = o.initial_drag;
+  return reentry::fsw::resolve_alpha_profile(mission);
+}
 
-  auto planner = std::make_unique<reentry::fsw::EntryPlanner>();  // large fixed arrays: not on the stack
-  const reentry::fsw::Status init_status = init_from_mission(*planner, mission);
-  if (init_status != reentry::fsw::Status::kOk) {
-    std::cerr << "reentry_plan: planner init failed: " << reentry::fsw::to_string(init_status) << '\n';
-    return 2;
+/// The state of the logged NAV_STATE at the given tick; "" or the error.
+std::string state_from_log(const std::string& path, long long tick, reentry::fsw::RelativeState& state) {
+  lcm::LogFile log(path, "r");
+  bool found = false;
+  reentry::nav_state_t nav{};
+  for (const lcm::LogEvent* ev = log.good() ? log.readNextEvent() : nullptr; ev != nullptr && !found;
+       ev = log.readNextEvent()) {
+    if (ev->channel != "NAV_STATE" || nav.decode(ev->data, 0, ev->datalen) < 0) continue;
+    found = nav.tick == tick;
   }
-  auto profile = std::make_unique<reentry::fsw::ReferenceProfile>();
-  reentry::fsw::RelativeState entry = planner->entry_state();
-  if (!from_log.empty()) {
-    lcm::LogFile log(from_log, "r");
-    bool found = false;
-    reentry::nav_state_t nav{};
-    for (const lcm::LogEvent* ev = log.good() ? log.readNextEvent() : nullptr; ev != nullptr && !found;
-         ev = log.readNextEvent()) {
-      if (ev->channel != "NAV_STATE" || nav.decode(ev->data, 0, ev->datalen) < 0) continue;
-      found = nav.tick == from_tick;
-    }
-    if (!found) {
-      std::fprintf(stderr, "reentry_plan: no NAV_STATE with tick %lld in %s\n", from_tick, from_log.c_str());
-      return 2;
-    }
-    if (reentry::fsw::relative_state_from_nav(nav.t_s, nav.position_I_m, nav.velocity_I_mps, nav.aero_accel_I_mps2,
-                                              nav.earth_rotation_angle_rad, entry) != reentry::fsw::Status::kOk) {
-      std::fprintf(stderr, "reentry_plan: invalid NAV_STATE at tick %lld in %s\n", from_tick, from_log.c_str());
-      return 2;
-    }
-  }
-  const auto t0 = std::chrono::steady_clock::now();
-  const reentry::fsw::Status status = planner->plan(entry, *profile);
-  const auto t1 = std::chrono::steady_clock::now();
-  const reentry::fsw::PlannerDiagnostics& d = planner->diagnostics();
-  const double e_entry = planner->entry_energy_Jpkg();
+  if (!found) return "no NAV_STATE with tick " + std::to_string(tick) + " in " + path;
+  if (reentry::fsw::relative_state_from_nav(nav.t_s, nav.position_I_m, nav.velocity_I_mps, nav.aero_accel_I_mps2,
+                                            nav.earth_rotation_angle_rad, state) != reentry::fsw::Status::kOk)
+    return "invalid NAV_STATE at tick " + std::to_string(tick) + " in " + path;
+  return "";
+}
 
+/// The one JSON line: the planner's diagnostics (thesis ch. 7 quantities) in degrees and km.
+nlohmann::json plan_summary(const reentry::config::Mission& mission, reentry::fsw::Status status,
+                            const reentry::fsw::PlannerDiagnostics& d, double e_entry_Jpkg, double plan_ms) {
   nlohmann::json j;
   j["mission"] = mission.name;
   j["drag_profile"] = mission.guidance.drag_profile;
@@ -111,32 +83,69 @@ int main(int argc, char** argv) {
   j["converged"] = d.converged;
   j["iterations"] = d.iterations;
   j["status"] = reentry::fsw::to_string(status);
-  j["b_mission_deg"] = d.b_mission_rad * kRadToDeg;
-  j["A_mission_deg"] = d.a_mission_rad * kRadToDeg;
-  j["chi_minus_A_deg"] = d.chi_minus_a_rad * kRadToDeg;
+  j["b_mission_deg"] = d.b_mission_rad * kDegPerRad;
+  j["A_mission_deg"] = d.a_mission_rad * kDegPerRad;
+  j["chi_minus_A_deg"] = d.chi_minus_a_rad * kDegPerRad;
   j["initial_bank_sign"] = d.initial_bank_sign;
   j["S_initial_km"] = d.s_initial_m / 1e3;
   j["S_final_km"] = d.s_final_m / 1e3;
   j["Di_mps2"] = d.di_mps2;
   j["Dc_mps2"] = d.dc_mps2;
   j["Df_mps2"] = d.df_mps2;
-  j["E1_norm"] = d.e1_Jpkg / e_entry;
-  j["E2_norm"] = d.e2_Jpkg / e_entry;
-  j["reversal_E_norm"] = d.reversal_energy_Jpkg / e_entry;
+  j["E1_norm"] = d.e1_Jpkg / e_entry_Jpkg;
+  j["E2_norm"] = d.e2_Jpkg / e_entry_Jpkg;
+  j["reversal_E_norm"] = d.reversal_energy_Jpkg / e_entry_Jpkg;
   j["crossrange_err_km"] = d.crossrange_err_m / 1e3;
   j["downrange_err_km"] = d.downrange_err_m / 1e3;
   j["clipped_points"] = d.clipped_points;
   j["bank_saturated_points"] = d.bank_saturated_points;
   j["ranging_blend"] = d.ranging_blend;
   j["reversal_evaluations"] = d.reversal_evaluations;
-  j["plan_ms"] = std::chrono::duration<double, std::milli>(t1 - t0).count();
-  if (!profile_out.empty()) {
-    const bool ok = write_profile_csv(profile_out, *profile);
-    j["profile_out"] = profile_out;
-    if (!ok) {
-      std::cerr << "reentry_plan: cannot write " << profile_out << '\n';
+  j["plan_ms"] = plan_ms;
+  return j;
+}
+
+int fail(const std::string& message) {
+  std::cerr << "reentry_plan: " << message << '\n';
+  return 2;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Plan a reference drag/bank profile from the mission's entry interface (thesis ch. 7)"};
+  Options o;
+  app.add_option("--mission", o.mission_arg, "mission name (x33, horus, ...) or path to a .toml file")->required();
+  app.add_option("--profile-out", o.profile_out, "write the planned profile as CSV");
+  app.add_option("--from-log", o.from_log, "plan from a logged NAV_STATE instead of the entry interface (with --tick)");
+  app.add_option("--tick", o.from_tick, "tick of the NAV_STATE in --from-log");
+  app.add_option("--drag-profile", o.drag_profile, "three_segment or smooth (default: mission file)")
+      ->check(CLI::IsMember({"three_segment", "smooth"}));
+  app.add_option("--initial-drag", o.initial_drag, "actual or lmin (default: mission file)")
+      ->check(CLI::IsMember({"actual", "lmin"}));
+  CLI11_PARSE(app, argc, argv);
+
+  reentry::config::Mission mission;
+  if (const std::string error = load_mission(o, mission); !error.empty()) return fail(error);
+  auto planner = std::make_unique<reentry::fsw::EntryPlanner>();  // large fixed arrays: not on the stack
+  const reentry::fsw::Status init_status = init_from_mission(*planner, mission);
+  if (init_status != reentry::fsw::Status::kOk)
+    return fail(std::string("planner init failed: ") + reentry::fsw::to_string(init_status));
+  reentry::fsw::RelativeState entry = planner->entry_state();
+  if (!o.from_log.empty()) {
+    if (const std::string error = state_from_log(o.from_log, o.from_tick, entry); !error.empty()) return fail(error);
+  }
+
+  auto profile = std::make_unique<reentry::fsw::ReferenceProfile>();
+  const auto t0 = std::chrono::steady_clock::now();
+  const reentry::fsw::Status status = planner->plan(entry, *profile);
+  const auto t1 = std::chrono::steady_clock::now();
+  nlohmann::json j = plan_summary(mission, status, planner->diagnostics(), planner->entry_energy_Jpkg(),
+                                  std::chrono::duration<double, std::milli>(t1 - t0).count());
+  if (!o.profile_out.empty()) {
+    j["profile_out"] = o.profile_out;
+    if (!write_profile_csv(o.profile_out, *profile)) {
       std::cout << j.dump() << std::endl;
-      return 2;
+      return fail("cannot write " + o.profile_out);
     }
   }
   std::cout << j.dump() << std::endl;

@@ -6,7 +6,10 @@
 #include <toml++/toml.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <exception>
 #include <filesystem>
 #include <set>
@@ -478,6 +481,26 @@ std::string resolve_relative(const std::filesystem::path& base_dir, const std::s
   return p.lexically_normal().string();
 }
 
+// FNV-1a 64 over the contents of the files, in order (the mission's digest).
+std::string files_digest(const std::vector<std::string>& paths) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const auto& p : paths) {
+    std::ifstream in(p, std::ios::binary);
+    char buf[65536];
+    while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+      for (std::streamsize i = 0; i < in.gcount(); ++i) {
+        h ^= static_cast<unsigned char>(buf[i]);
+        h *= 1099511628211ull;
+      }
+    }
+    h ^= 0xff;  // file separator
+    h *= 1099511628211ull;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
 std::string find_mission_file(const std::string& name_or_path) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -492,6 +515,150 @@ std::string find_mission_file(const std::string& name_or_path) {
     if (fs::exists(p, ec)) return p.lexically_normal().string();
   }
   return (fs::path(dirs.front()) / "missions" / (name_or_path + ".toml")).lexically_normal().string();
+}
+
+void read_entry(Reader e, Mission& m) {
+  m.entry.altitude_m = e.number("altitude_m", 0.0, 1e6, true);
+  m.entry.longitude_rad = e.number("longitude_deg", -360.0, 360.0) * kDegToRad;
+  m.entry.latitude_rad = e.number("latitude_deg", -90.0, 90.0) * kDegToRad;
+  m.entry.velocity_mps = e.number("velocity_mps", 0.0, 12000.0, true);
+  m.entry.flight_path_rad = e.number("flight_path_deg", -90.0, 0.0) * kDegToRad;
+  m.entry.heading_rad = e.number("heading_deg", -360.0, 360.0) * kDegToRad;
+  e.finish();
+}
+
+void read_taem(Reader t, TaemInterface& ti) {
+  ti.altitude_m = t.number("altitude_m", 0.0, 1e6, true);
+  ti.velocity_mps = t.number("velocity_mps", 0.0, 12000.0, true);
+  ti.longitude_rad = t.number("longitude_deg", -360.0, 360.0) * kDegToRad;
+  ti.latitude_rad = t.number("latitude_deg", -90.0, 90.0) * kDegToRad;
+  ti.heading_rad = t.number("heading_deg", -360.0, 360.0) * kDegToRad;
+  ti.range_tol_m = t.number("range_tol_m", 0.0, 1e6, true);
+  ti.altitude_tol_m = t.number("altitude_tol_m", 0.0, 1e5, true);
+  ti.heading_tol_rad = t.number("heading_tol_deg", 0.0, 180.0, true) * kDegToRad;
+  ti.hac_radius_m = t.number("hac_radius_m", 0.0, 1e5, true);
+  if (t.has("mach_target") || t.has("mach_tol")) {
+    ti.mach_target = t.number("mach_target", 0.0, 50.0, true);
+    ti.mach_tol = t.number("mach_tol", 0.0, 50.0, true);
+  }
+  if (t.has("flight_path_deg") || t.has("flight_path_tol_deg")) {
+    ti.flight_path_rad = t.number("flight_path_deg", -90.0, 90.0) * kDegToRad;
+    ti.flight_path_tol_rad = t.number("flight_path_tol_deg", 0.0, 180.0, true) * kDegToRad;
+  }
+  t.finish();
+}
+
+void read_constraints(Reader c, PathConstraints& pc) {
+  auto optional_limit = [&](const char* key, double hi) {
+    return c.has(key) ? c.number(key, 0.0, hi, true) : (c.get(key, false), kNotConstrained);
+  };
+  pc.heat_flux_max_Wpm2 = optional_limit("heat_flux_max_Wpm2", 1e9);
+  pc.heat_load_max_Jpm2 = optional_limit("heat_load_max_Jpm2", 1e12);
+  pc.load_factor_max_g = optional_limit("load_factor_max_g", 100.0);
+  pc.q_alpha_max_Pa_rad = optional_limit("q_alpha_max_Pa_rad", 1e8);
+  pc.dynamic_pressure_max_Pa = optional_limit("dynamic_pressure_max_Pa", 1e8);
+  pc.alpha_max_rad = c.number("alpha_max_deg", 0.0, 90.0, true) * kDegToRad;
+  pc.alpha_rate_max_radps = c.number("alpha_rate_max_degps", 0.0, 1000.0, true) * kDegToRad;
+  pc.sigma_rate_max_radps = c.number("sigma_rate_max_degps", 0.0, 1000.0, true) * kDegToRad;
+  pc.alpha_accel_max_radps2 = c.number("alpha_accel_max_degps2", 0.0, 10000.0, true) * kDegToRad;
+  pc.sigma_accel_max_radps2 = c.number("sigma_accel_max_degps2", 0.0, 10000.0, true) * kDegToRad;
+  c.finish();
+}
+
+void read_alpha_profile(Reader ap, Mission& m) {
+  const PathConstraints& pc = m.constraints;
+  m.alpha_profile_planned = ap.choice("source", {"table", "planned"}, false, "table") == "planned";
+  if (m.alpha_profile_planned) {
+    if (ap.has("energy")) ap.fail("energy", "not allowed with source = \"planned\" (the profile is planned)");
+    if (ap.has("alpha_deg")) ap.fail("alpha_deg", "not allowed with source = \"planned\" (the profile is planned)");
+  } else {
+    m.alpha_profile.x = ap.numbers("energy", true, 0.0, 2.0);
+    check_capacity(ap, "energy", m.alpha_profile.x.size(), kOnboardAlphaProfilePoints, "alpha profile");
+    m.alpha_profile.y = ap.numbers("alpha_deg", false, 0.0, 90.0);
+  }
+  for (double& a : m.alpha_profile.y) a *= kDegToRad;
+  if (!ap.sink()->failed() && m.alpha_profile.x.size() != m.alpha_profile.y.size())
+    ap.fail("alpha_deg", "has " + std::to_string(m.alpha_profile.y.size()) + " values but energy has " +
+                             std::to_string(m.alpha_profile.x.size()));
+  for (size_t i = 0; i < m.alpha_profile.y.size() && !ap.sink()->failed(); ++i)
+    if (m.alpha_profile.y[i] > pc.alpha_max_rad * (1.0 + 1e-12))
+      ap.fail("alpha_deg[" + std::to_string(i) + "]", "value " + fmt_double(m.alpha_profile.y[i] / kDegToRad) +
+                                                     " exceeds constraints.alpha_max_deg " +
+                                                     fmt_double(pc.alpha_max_rad / kDegToRad));
+  ap.finish();
+}
+
+void read_guidance(Reader g, GuidanceParams& gp) {
+  // A guidance cycle between 1 and 100 Hz: slower cannot track a drag profile through the
+  // pull-out, faster leaves no time for the tracker and the link supervision in ticks.
+  gp.gnc_rate_hz = g.number("gnc_rate_hz", 1.0, 100.0);
+  gp.plan_latency_ticks = g.integer("plan_latency_ticks", 1, 1000);  // the executive adopts at k + L, L >= 1
+  gp.replan_period_s = g.number("replan_period_s", 0.0, 1e5, true);
+  gp.replan_drag_error_frac = g.number("replan_drag_error_frac", 0.0, 10.0, true);
+  gp.drag_error_replan_spacing_s = g.number("drag_error_replan_spacing_s", 0.0, 1e4, false, false, 5.0);
+  gp.drag_profile = g.choice("drag_profile", {"three_segment", "smooth"});
+  gp.initial_drag = g.choice("initial_drag", {"actual", "lmin"});
+  gp.onboard_atmosphere = g.choice("onboard_atmosphere", {"exponential", "table"});
+  gp.onboard_trim = g.boolean("onboard_trim", false, true);
+  gp.initial_descent_drag_mps2 = g.number("initial_descent_drag_mps2", 0.0, 100.0);
+  // The guidance law; [guidance.predictor_corrector] holds that law's tunables.
+  gp.law = g.choice("law", {"drag_tracking", "predictor_corrector"}, false, "drag_tracking");
+  // The laws' tunables ([guidance] numbers not read above, [guidance.planner], [guidance.tracker],
+  // [guidance.predictor_corrector]) are validated by the flight software's parameter lists.
+  gp.tuning = g.pass_through_numbers({"planner", "tracker", "predictor_corrector"});
+  g.finish();
+}
+
+void read_sim(Reader s, SimParams& sp) {
+  sp.integrator = s.choice("integrator", {"rkf56", "rkf78"});
+  sp.rel_tol = s.number("rel_tol", 0.0, 1.0, true);
+  sp.abs_tol_position_m = s.number("abs_tol_position_m", 0.0, 1e6, true);
+  sp.abs_tol_velocity_mps = s.number("abs_tol_velocity_mps", 0.0, 1e6, true);
+  sp.gravity = s.choice("gravity", {"central", "j2j4", "sh20"});
+  sp.atmosphere = s.choice("atmosphere", {"us76", "exponential"});
+  sp.wind = s.boolean("wind");
+  sp.shape = s.choice("shape", {"sphere", "oblate"});
+  sp.trim = s.boolean("trim");
+  sp.attitude = s.choice("attitude", {"ideal", "lag"});
+  sp.attitude_time_constant_s = s.number("attitude_time_constant_s", 0.0, 100.0, true);
+  sp.transport_delay_ticks = s.integer("transport_delay_ticks", 0, 1000);
+  sp.time_limit_s = s.number("time_limit_s", 0.0, 1e6, true);
+  s.finish();
+}
+
+void read_environment(Reader env, const std::filesystem::path& dir, EnvironmentData& data) {
+  namespace fs = std::filesystem;
+  auto env_file = [&](const char* key) {
+    const std::string rel = env.text(key);
+    if (env.sink()->failed()) return std::string();
+    const std::string full = resolve_relative(dir, rel);
+    std::error_code ec;
+    if (!fs::is_regular_file(full, ec)) env.fail(key, "value \"" + rel + "\": file " + full + " not found");
+    return full;
+  };
+  data.us76_table = env_file("us76_table");
+  data.gravity_coefficients = env_file("gravity_coefficients");
+  data.wind_profile = env_file("wind_profile");
+  env.finish();
+}
+
+// Cross-field checks: the TAEM energy below the entry's, the alpha profile covering both.
+void check_energies(Reader& top, Mission& m) {
+  const TaemInterface& ti = m.taem;
+  const double e_entry = specific_energy(m.entry.altitude_m, m.entry.velocity_mps);
+  const double e_taem = specific_energy(ti.altitude_m, ti.velocity_mps);
+  if (!(e_taem < e_entry)) {
+    top.fail("taem.velocity_mps", "TAEM energy " + fmt_double(e_taem) + " J/kg (altitude_m " + fmt_double(ti.altitude_m) +
+                                      ", velocity_mps " + fmt_double(ti.velocity_mps) + ") is not below the entry energy " +
+                                      fmt_double(e_entry) + " J/kg");
+    return;
+  }
+  const double e_ratio = e_taem / e_entry;
+  if (!m.alpha_profile_planned && (m.alpha_profile.x.front() > e_ratio || m.alpha_profile.x.back() < 1.0)) {
+    top.fail("alpha_profile.energy", "range [" + fmt_double(m.alpha_profile.x.front()) + ", " +
+                                         fmt_double(m.alpha_profile.x.back()) + "] does not cover [E_taem/E_entry = " +
+                                         fmt_double(e_ratio) + ", 1]");
+  }
 }
 
 void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
@@ -515,152 +682,26 @@ void load_into(const std::string& path, Mission& m, ErrorSink& sink) {
     top.fail("vehicle_file", "value \"" + vehicle_rel + "\": file " + vehicle_path + " not found");
     return;
   }
-
-  Reader e = top.sub("entry");
-  m.entry.altitude_m = e.number("altitude_m", 0.0, 1e6, true);
-  m.entry.longitude_rad = e.number("longitude_deg", -360.0, 360.0) * kDegToRad;
-  m.entry.latitude_rad = e.number("latitude_deg", -90.0, 90.0) * kDegToRad;
-  m.entry.velocity_mps = e.number("velocity_mps", 0.0, 12000.0, true);
-  m.entry.flight_path_rad = e.number("flight_path_deg", -90.0, 0.0) * kDegToRad;
-  m.entry.heading_rad = e.number("heading_deg", -360.0, 360.0) * kDegToRad;
-  e.finish();
-
-  Reader t = top.sub("taem");
-  TaemInterface& ti = m.taem;
-  ti.altitude_m = t.number("altitude_m", 0.0, 1e6, true);
-  ti.velocity_mps = t.number("velocity_mps", 0.0, 12000.0, true);
-  ti.longitude_rad = t.number("longitude_deg", -360.0, 360.0) * kDegToRad;
-  ti.latitude_rad = t.number("latitude_deg", -90.0, 90.0) * kDegToRad;
-  ti.heading_rad = t.number("heading_deg", -360.0, 360.0) * kDegToRad;
-  ti.range_tol_m = t.number("range_tol_m", 0.0, 1e6, true);
-  ti.altitude_tol_m = t.number("altitude_tol_m", 0.0, 1e5, true);
-  ti.heading_tol_rad = t.number("heading_tol_deg", 0.0, 180.0, true) * kDegToRad;
-  ti.hac_radius_m = t.number("hac_radius_m", 0.0, 1e5, true);
-  if (t.has("mach_target") || t.has("mach_tol")) {
-    ti.mach_target = t.number("mach_target", 0.0, 50.0, true);
-    ti.mach_tol = t.number("mach_tol", 0.0, 50.0, true);
-  }
-  if (t.has("flight_path_deg") || t.has("flight_path_tol_deg")) {
-    ti.flight_path_rad = t.number("flight_path_deg", -90.0, 90.0) * kDegToRad;
-    ti.flight_path_tol_rad = t.number("flight_path_tol_deg", 0.0, 180.0, true) * kDegToRad;
-  }
-  t.finish();
-
-  Reader c = top.sub("constraints");
-  PathConstraints& pc = m.constraints;
-  auto optional_limit = [&](const char* key, double hi) {
-    return c.has(key) ? c.number(key, 0.0, hi, true) : (c.get(key, false), kNotConstrained);
-  };
-  pc.heat_flux_max_Wpm2 = optional_limit("heat_flux_max_Wpm2", 1e9);
-  pc.heat_load_max_Jpm2 = optional_limit("heat_load_max_Jpm2", 1e12);
-  pc.load_factor_max_g = optional_limit("load_factor_max_g", 100.0);
-  pc.q_alpha_max_Pa_rad = optional_limit("q_alpha_max_Pa_rad", 1e8);
-  pc.dynamic_pressure_max_Pa = optional_limit("dynamic_pressure_max_Pa", 1e8);
-  pc.alpha_max_rad = c.number("alpha_max_deg", 0.0, 90.0, true) * kDegToRad;
-  pc.alpha_rate_max_radps = c.number("alpha_rate_max_degps", 0.0, 1000.0, true) * kDegToRad;
-  pc.sigma_rate_max_radps = c.number("sigma_rate_max_degps", 0.0, 1000.0, true) * kDegToRad;
-  pc.alpha_accel_max_radps2 = c.number("alpha_accel_max_degps2", 0.0, 10000.0, true) * kDegToRad;
-  pc.sigma_accel_max_radps2 = c.number("sigma_accel_max_degps2", 0.0, 10000.0, true) * kDegToRad;
-  c.finish();
-
-  Reader ap = top.sub("alpha_profile");
-  m.alpha_profile_planned = ap.choice("source", {"table", "planned"}, false, "table") == "planned";
-  if (m.alpha_profile_planned) {
-    if (ap.has("energy")) ap.fail("energy", "not allowed with source = \"planned\" (the profile is planned)");
-    if (ap.has("alpha_deg")) ap.fail("alpha_deg", "not allowed with source = \"planned\" (the profile is planned)");
-  } else {
-    m.alpha_profile.x = ap.numbers("energy", true, 0.0, 2.0);
-    check_capacity(ap, "energy", m.alpha_profile.x.size(), kOnboardAlphaProfilePoints, "alpha profile");
-    m.alpha_profile.y = ap.numbers("alpha_deg", false, 0.0, 90.0);
-  }
-  for (double& a : m.alpha_profile.y) a *= kDegToRad;
-  if (!sink.failed() && m.alpha_profile.x.size() != m.alpha_profile.y.size())
-    ap.fail("alpha_deg", "has " + std::to_string(m.alpha_profile.y.size()) + " values but energy has " +
-                             std::to_string(m.alpha_profile.x.size()));
-  for (size_t i = 0; i < m.alpha_profile.y.size() && !sink.failed(); ++i)
-    if (m.alpha_profile.y[i] > pc.alpha_max_rad * (1.0 + 1e-12))
-      ap.fail("alpha_deg[" + std::to_string(i) + "]", "value " + fmt_double(m.alpha_profile.y[i] / kDegToRad) +
-                                                     " exceeds constraints.alpha_max_deg " +
-                                                     fmt_double(pc.alpha_max_rad / kDegToRad));
-  ap.finish();
-
-  Reader g = top.sub("guidance");
-  GuidanceParams& gp = m.guidance;
-  // A guidance cycle between 1 and 100 Hz: slower cannot track a drag profile through the
-  // pull-out, faster leaves no time for the tracker and the link supervision in ticks.
-  gp.gnc_rate_hz = g.number("gnc_rate_hz", 1.0, 100.0);
-  gp.plan_latency_ticks = g.integer("plan_latency_ticks", 1, 1000);  // the executive adopts at k + L, L >= 1
-  gp.replan_period_s = g.number("replan_period_s", 0.0, 1e5, true);
-  gp.replan_drag_error_frac = g.number("replan_drag_error_frac", 0.0, 10.0, true);
-  gp.drag_error_replan_spacing_s = g.number("drag_error_replan_spacing_s", 0.0, 1e4, false, false, 5.0);
-  gp.drag_profile = g.choice("drag_profile", {"three_segment", "smooth"});
-  gp.initial_drag = g.choice("initial_drag", {"actual", "lmin"});
-  gp.onboard_atmosphere = g.choice("onboard_atmosphere", {"exponential", "table"});
-  gp.onboard_trim = g.boolean("onboard_trim", false, true);
-  gp.initial_descent_drag_mps2 = g.number("initial_descent_drag_mps2", 0.0, 100.0);
-  // ---- Guidance law selection (issue 36, predictor-corrector law) --------------------------
-  // `law` chooses the guidance law; [guidance.predictor_corrector] holds that law's tunables,
-  // passed through with the planner's and tracker's (validated by the flight software's lists).
-  gp.law = g.choice("law", {"drag_tracking", "predictor_corrector"}, false, "drag_tracking");
-  // ---- end of the guidance law block ---------------------------------------------------------
-  // The planner's and tracker's tunables ([guidance] numbers not read above, [guidance.planner],
-  // [guidance.tracker]) are validated by the flight software's parameter lists.
-  gp.tuning = g.pass_through_numbers({"planner", "tracker", "predictor_corrector"});
-  g.finish();
-
-  Reader s = top.sub("sim");
-  SimParams& sp = m.sim;
-  sp.integrator = s.choice("integrator", {"rkf56", "rkf78"});
-  sp.rel_tol = s.number("rel_tol", 0.0, 1.0, true);
-  sp.abs_tol_position_m = s.number("abs_tol_position_m", 0.0, 1e6, true);
-  sp.abs_tol_velocity_mps = s.number("abs_tol_velocity_mps", 0.0, 1e6, true);
-  sp.gravity = s.choice("gravity", {"central", "j2j4", "sh20"});
-  sp.atmosphere = s.choice("atmosphere", {"us76", "exponential"});
-  sp.wind = s.boolean("wind");
-  sp.shape = s.choice("shape", {"sphere", "oblate"});
-  sp.trim = s.boolean("trim");
-  sp.attitude = s.choice("attitude", {"ideal", "lag"});
-  sp.attitude_time_constant_s = s.number("attitude_time_constant_s", 0.0, 100.0, true);
-  sp.transport_delay_ticks = s.integer("transport_delay_ticks", 0, 1000);
-  sp.time_limit_s = s.number("time_limit_s", 0.0, 1e6, true);
-  s.finish();
-
+  read_entry(top.sub("entry"), m);
+  read_taem(top.sub("taem"), m.taem);
+  read_constraints(top.sub("constraints"), m.constraints);
+  read_alpha_profile(top.sub("alpha_profile"), m);
+  read_guidance(top.sub("guidance"), m.guidance);
+  read_sim(top.sub("sim"), m.sim);
   read_dispersions(top.sub("dispersions"), m.dispersions);
   m.has_stress_dispersions = top.has("stress_dispersions");
   if (m.has_stress_dispersions) read_dispersions(top.sub("stress_dispersions"), m.stress_dispersions);
-
-  Reader env = top.sub("environment");
-  auto env_file = [&](const char* key) {
-    const std::string rel = env.text(key);
-    if (sink.failed()) return std::string();
-    const std::string full = resolve_relative(dir, rel);
-    if (!fs::is_regular_file(full, ec)) env.fail(key, "value \"" + rel + "\": file " + full + " not found");
-    return full;
-  };
-  m.environment.us76_table = env_file("us76_table");
-  m.environment.gravity_coefficients = env_file("gravity_coefficients");
-  m.environment.wind_profile = env_file("wind_profile");
-  env.finish();
+  read_environment(top.sub("environment"), dir, m.environment);
   top.finish();
   if (sink.failed()) return;
-
-  // Cross-field checks.
-  const double e_entry = specific_energy(m.entry.altitude_m, m.entry.velocity_mps);
-  const double e_taem = specific_energy(ti.altitude_m, ti.velocity_mps);
-  if (!(e_taem < e_entry)) {
-    t.fail("velocity_mps", "TAEM energy " + fmt_double(e_taem) + " J/kg (altitude_m " + fmt_double(ti.altitude_m) +
-                               ", velocity_mps " + fmt_double(ti.velocity_mps) + ") is not below the entry energy " +
-                               fmt_double(e_entry) + " J/kg");
-    return;
-  }
-  const double e_ratio = e_taem / e_entry;
-  if (!m.alpha_profile_planned && (m.alpha_profile.x.front() > e_ratio || m.alpha_profile.x.back() < 1.0)) {
-    ap.fail("energy", "range [" + fmt_double(m.alpha_profile.x.front()) + ", " +
-                          fmt_double(m.alpha_profile.x.back()) + "] does not cover [E_taem/E_entry = " +
-                          fmt_double(e_ratio) + ", 1]");
-    return;
-  }
+  check_energies(top, m);
+  if (sink.failed()) return;
   read_vehicle_file(vehicle_path, m.vehicle, sink);
+  if (sink.failed()) return;
+  sink.set(check_mission(m));
+  if (sink.failed()) return;
+  m.digest = files_digest({path, vehicle_path, m.environment.us76_table, m.environment.gravity_coefficients,
+                           m.environment.wind_profile});
 }
 
 }  // namespace

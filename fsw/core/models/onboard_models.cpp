@@ -308,8 +308,7 @@ double OnboardModels::dlnrho_dr_fd(double altitude_m, double step_m) const {
 double OnboardModels::heat_flux_coefficient(double alpha_rad) const {
   if (heating_ == HeatFluxModel::kChapmanStagnation) return heat_constant_;  // (3.6)
   // Betts's alpha factor qa, alpha in degrees as published (Betts 2010, 6.1).
-  constexpr double kDegPerRad = 57.29577951308232;
-  const double a = alpha_rad * kDegPerRad;
+  const double a = alpha_rad * physics::kDegPerRad;
   const double qa = ((-1.0117249e-6 * a + 2.1286289e-4) * a - 1.9213774e-2) * a + 1.0672181;
   return qa * heat_constant_;
 }

@@ -10,14 +10,16 @@
 #include "guidance_types.hpp"
 #include "mission_data.hpp"
 #include "models/onboard_trim.hpp"
+#include "physics/earth_constants.hpp"
 
 namespace reentry::fsw {
 
-inline constexpr double kMuEarth_m3ps2 = 3.986004418e14;
-inline constexpr double kEarthRadius_m = 6378137.0;        // R_eq, reference radius of (7.8)
-inline constexpr double kEarthRate_radps = 7.292115e-5;
-inline constexpr double kG0_mps2 = 9.80665;
-inline constexpr double kEarthFlattening = 1.0 / 298.257223563;  // WGS-84
+// The Earth's constants (common/physics); the models built on them below are the flight's own.
+inline constexpr double kMuEarth_m3ps2 = physics::kMuEarth_m3ps2;
+inline constexpr double kEarthRadius_m = physics::kEarthEquatorialRadius_m;  // R_eq, reference radius of (7.8)
+inline constexpr double kEarthRate_radps = physics::kEarthRate_radps;
+inline constexpr double kG0_mps2 = physics::kStandardGravity_mps2;
+inline constexpr double kEarthFlattening = physics::kEarthFlattening;
 
 /// Radius of the reference ellipsoid at a latitude, first order in the flattening:
 /// R_eq (1 - f sin^2(lat)). Altitudes at the edges (the mission's TAEM altitude, the air's

@@ -4,14 +4,6 @@
 
 namespace reentry::fsw {
 
-double wrap_pi(double angle_rad) {
-  const double two_pi = 2.0 * M_PI;
-  double a = std::fmod(angle_rad, two_pi);
-  if (a <= -M_PI) a += two_pi;
-  if (a > M_PI) a -= two_pi;
-  return a;
-}
-
 GreatCircle great_circle(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad) {
   // Co-latitudes c = 90 - lat1, a = 90 - lat2, B = lon2 - lon1 (fig. 7.1).
   const double d_lon = lon2_rad - lon1_rad;

@@ -1,6 +1,8 @@
 // Spherical geometry of the mission (thesis §7.4, fig. 7.1, 7.17-7.19).
 #pragma once
 
+#include "physics/angles.hpp"
+
 namespace reentry::fsw {
 
 /// Great-circle arc b (7.1) and initial azimuth A (7.2) from point 1 to point 2, radians.
@@ -29,8 +31,7 @@ struct TrackErrors {
 TrackErrors track_errors(double lat_entry_rad, double lon_entry_rad, double azimuth_mission_rad,
                          double lat_x_rad, double lon_x_rad);
 
-/// Angle wrapped to (-pi, pi].
-double wrap_pi(double angle_rad);
+using physics::wrap_pi;  // angle to (-pi, pi]
 
 /// Initial bank sign from the quadrant rule (fig. 7.20): steer towards the TAEM point.
 /// chi - A > 0 (heading right of the target) -> bank left (-1), otherwise +1.

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "physics/earth_constants.hpp"
+
 namespace reentry::fsw {
 namespace {
 
@@ -17,9 +19,8 @@ class AlphaModulation {
   AlphaModulation(const OnboardAero& aero, double alpha_rad, double mach, double max_rad)
       : aero_(aero.at_mach(mach)), alpha_rad_(alpha_rad), lo_rad_(std::fmax(0.0, alpha_rad - max_rad)),
         cl_ref_(aero_.cl(alpha_rad)) {
-    constexpr double kDegree_rad = M_PI / 180.0;
     if (cl_ref_ > 0.0) {
-      lift_falls_ = aero_.cl(alpha_rad - kDegree_rad) < cl_ref_;
+      lift_falls_ = aero_.cl(alpha_rad - physics::kRadPerDeg) < cl_ref_;
       cl_lo_ = aero_.cl(lo_rad_);
     }
   }

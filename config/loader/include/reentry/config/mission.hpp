@@ -163,6 +163,9 @@ struct EnvironmentData {
 struct Mission {
   std::string name;                      // e.g. "x33"
   std::string source_file;               // absolute path of the mission file
+  // FNV-1a 64 of every file the mission was loaded from (mission, vehicle, environment), in
+  // hex: two runs flew the same mission exactly when their digests are equal.
+  std::string digest;
   std::string notes;                     // provenance of the numbers
   Vehicle vehicle;
   SphericalState entry;
@@ -191,6 +194,12 @@ struct LoadResult {
 /// Load and validate a mission file. `name_or_path` is a path to a .toml file or a
 /// mission name ("x33", "horus", "orbiter", "x38") looked up in the config directory.
 LoadResult load_mission(const std::string& name_or_path);
+
+/// The rules a mission's values and data files must meet to be flown: "" or an error naming
+/// the file, the key and the value. load_mission applies them after reading a file, and the
+/// truth simulator applies them again to the mission it is given (Simulator::create): the
+/// loader and the simulator accept exactly the same missions.
+std::string check_mission(const Mission& mission);
 
 /// One-line human summary: vehicle, mass, S_ref, entry and TAEM state, limits in SI.
 std::string summary_line(const Mission& mission);
