@@ -142,6 +142,12 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   out.drag_ref_mps2 = plan.drag_mps2;
   out.drag_err_mps2 = s.drag_mps2 - plan.drag_mps2;
   out.heading_err_rad = wrap_pi(s.heading_rad - g.target_heading_rad);
+  write_telemetry(s, in, law, g, li, out);
+}
+
+void PredictorCorrectorCycle::write_telemetry(const RelativeState& s, const BankLawInput& in, const BankLawOutput& law,
+                                              const ArrivalGeometry& g, const PcLateralInput& li,
+                                              PcCycleOutput& out) const {
   // Telemetry in the tracker's fields where the meaning fits: the plan's bank magnitude as the
   // base bank, the damping gain as the loop frequency, the bound and the guard as flags.
   TrackerTelemetry& t = out.telemetry;

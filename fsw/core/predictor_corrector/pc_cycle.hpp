@@ -61,6 +61,8 @@ class PredictorCorrectorCycle {
   };
   PlanPoint plan_at(double energy_Jpkg) const;
   void bank_command(const RelativeState& s, double alpha_rad, double alpha_profile_rad, PcCycleOutput& out);
+  void write_telemetry(const RelativeState& s, const BankLawInput& in, const BankLawOutput& law,
+                       const ArrivalGeometry& g, const PcLateralInput& li, PcCycleOutput& out) const;
 
   OnboardModels models_;
   AlphaProfile alpha_profile_;
