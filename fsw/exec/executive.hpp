@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "exec/spsc_queue.hpp"
+#include "physics/earth_constants.hpp"
 #include "guidance_types.hpp"
 
 namespace reentry::fsw::exec {
@@ -130,7 +131,7 @@ struct ExecConfig {
   double replan_period_s = 50.0;
   double replan_drag_error_frac = 0.15;
   double drag_error_replan_spacing_s = 5.0;  // least spacing of drag-error replans (a persistent error does not request every cycle)
-  double initial_descent_drag_mps2 = 0.05 * 9.80665;  // replan from the captured state once sensed drag exceeds this
+  double initial_descent_drag_mps2 = 0.05 * physics::kStandardGravity_mps2;  // replan from the captured state once sensed drag exceeds this
   double plan_wait_limit_s = 30.0;          // bound of the lockstep wait for a late plan
   double replan_floor_energy_Jpkg = 0.0;    // no new plans below this energy (terminal phase)
   PlanMode mode = PlanMode::kLockstep;

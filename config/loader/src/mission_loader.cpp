@@ -22,9 +22,9 @@
 namespace reentry::config {
 namespace {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
-constexpr double kMu_m3ps2 = 3.986004418e14;   // DESIGN 5
-constexpr double kEarthRadius_m = 6378137.0;   // R_cb in (7.8)
+constexpr double kDegToRad = physics::kRadPerDeg;
+constexpr double kMu_m3ps2 = physics::kMuEarth_m3ps2;
+constexpr double kEarthRadius_m = physics::kEarthEquatorialRadius_m;  // R_cb in (7.8)
 
 std::string fmt_double(double v) {
   std::ostringstream os;
