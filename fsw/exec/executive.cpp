@@ -18,7 +18,7 @@ std::int64_t now_ns() {
 RelativeState predict_state(const RelativeState& s, int n_ticks, double dt_s) {
   RelativeState p = s;
   for (int i = 0; i < n_ticks; ++i) {
-    p.energy_Jpkg -= p.drag_mps2 * p.velocity_mps * dt_s;  // dE/dt = -D V  (7.8 differentiated)
+    p.energy_Jpkg -= p.drag_mps2 * p.velocity_mps * dt_s;  // dE/dt = -D V  (sec. 2.6.2; E of (7.8))
     p.velocity_mps -= p.drag_mps2 * dt_s;                  // dV/dt = -D (gravity along track neglected)
     if (p.velocity_mps < 0.0) p.velocity_mps = 0.0;
     p.t_s += dt_s;
@@ -53,7 +53,7 @@ bool Executive::in_absolute_windows(const RelativeState& s) const {
 }
 
 double Executive::gamma_rate_bound_radps(const RelativeState& a, const RelativeState& b) const {
-  // (2.45): gamma' = (L cos(sigma) - (g - V^2/r) cos(gamma)) / V + 2 omega cos(lat) sin(chi).
+  // (2.33): gamma' = (L cos(sigma) - (g - V^2/r) cos(gamma)) / V + 2 omega cos(lat) sin(chi).
   const NavWindows& w = cfg_.nav;
   const double lift = w.gamma_rate_lift_factor * std::fmax(std::fabs(a.lift_mps2), std::fabs(b.lift_mps2));
   const double v = std::fmax(w.gamma_rate_speed_min_mps, std::fmin(a.velocity_mps, b.velocity_mps));

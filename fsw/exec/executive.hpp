@@ -87,7 +87,7 @@ struct NavWindows {
   double specific_force_max_mps2 = 490.0; // |drag|, |lift| sensed [m/s^2] (50 g)
   double climb_rate_max_mps = 15000.0;    // |dh/dt| between accepted samples [m/s]
   double speed_rate_max_mps2 = 600.0;     // |dV/dt| between accepted samples [m/s^2] (drag + gravity < 60 g)
-  // Flight-path angle rate (2.45): |gamma'| <= (L + g + V^2/r) / V + 2 omega. Between two
+  // Flight-path angle rate (2.33): |gamma'| <= (L + g + V^2/r) / V + 2 omega. Between two
   // samples L is taken as gamma_rate_lift_factor times the larger sensed lift of the two.
   double gamma_rate_lift_factor = 2.0;    // [-], >= 1: lift between the samples above both ends
   double gamma_rate_speed_min_mps = 100.0;  // V floor of the bound [m/s], > 0 (entry flight is faster)
@@ -187,7 +187,8 @@ struct ExecCounters {
 };
 
 /// Propagate the state over n ticks of dt with the simple energy model used for the
-/// planning snapshot: altitude and angles frozen, V' = -D, E' = -D V (dE/dt = -D V, 7.8),
+/// planning snapshot: altitude and angles frozen, V' = -D, E' = -D V (dE = -D V dt of sec. 2.6.2,
+/// the time derivative of the energy E = V^2/2 - mu/r + const (7.8)),
 /// D held at the sensed value. Documented as a first-order prediction over L ticks.
 RelativeState predict_state(const RelativeState& s, int n_ticks, double dt_s);
 

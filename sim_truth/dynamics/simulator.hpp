@@ -143,7 +143,9 @@ class Simulator {
   RunSummary summary() const;
   const ResolvedSimSettings& settings() const { return settings_; }
   const config::Mission& mission() const { return mission_; }
-  /// Energy (7.8) of the TAEM interface: V_taem^2/2 - mu/(R_eq + h_taem) + mu/R_eq.
+  /// Energy (7.8) of the TAEM interface: V_taem^2/2 - mu/r_taem + mu/R_eq, r_taem the radius at
+  /// the TAEM altitude above the run's shape model at the TAEM latitude (radius_at_altitude_m:
+  /// R_eq + h_taem on the sphere, (2.13) on the oblate Earth).
   double taem_energy_Jpkg() const { return settings_.E_taem_Jpkg; }
   /// Energy of the entry state (for schedules in normalised energy E/E_entry).
   double entry_energy_Jpkg() const { return E_entry_Jpkg_; }

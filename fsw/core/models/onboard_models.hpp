@@ -30,7 +30,8 @@ double surface_radius_m(double latitude_rad);
 /// Central gravity g = mu / r^2.
 double gravity_mps2(double radius_m);
 
-/// Vertical acceleration lift must supply to hold level flight, (2.45) with gamma' = 0:
+/// Vertical acceleration lift must supply to hold level flight, (2.33) with gamma' = 0 (the
+/// omega^2 terms dropped; in energy form the Earth-rate term is C_gamma of (7.18)):
 /// g - V_h^2 / r - 2 omega V_h cos(lat) sin(chi) (an eastbound vehicle is held up by the
 /// Earth-rate term). V_h: horizontal Earth-relative speed, chi: heading from north.
 double level_flight_lift_need_mps2(double radius_m, double horizontal_speed_mps, double latitude_rad,
@@ -51,7 +52,8 @@ double radius_for_speed_m(double energy_Jpkg, double velocity_mps);
 
 enum class AtmosphereKind { kExponential, kTable };
 
-/// rho(h), d(ln rho)/dr and speed of sound. Exponential: rho0 = 1.225, beta = 1/7050 (7.15);
+/// rho(h), d(ln rho)/dr and speed of sound. Exponential (2.20): rho0 = 1.225, beta = 1/7050,
+/// d(ln rho)/dr = -beta (7.15)-(7.16);
 /// table: ln(rho) and T linear in altitude between the rows of a US76 table.
 class OnboardAtmosphere {
  public:
@@ -178,7 +180,7 @@ class AlphaProfile {
 /// Heat-flux model of the constrained point, q = C(alpha) sqrt(rho) V^c2 in both cases.
 enum class HeatFluxModel {
   kChapmanStagnation,  // (3.5)/(3.6): C = c1 / (sqrt(RN) sqrt(rho0) Vc^c2), c2 = 3
-  kBettsLeadingEdge,   // Betts 2010 (6.1) Shuttle wing leading edge: C = qa(alpha) K, c2 = 3.07
+  kBettsLeadingEdge,   // Betts 2010 sec. 6.1 Shuttle wing leading edge: C = qa(alpha) K, c2 = 3.07
 };
 
 /// Everything the planner needs about the vehicle and its environment.

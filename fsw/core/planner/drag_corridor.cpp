@@ -101,7 +101,7 @@ void corridor_bounds(const CorridorStageInput& in, const GridValues& radius_m, D
     out.q_alpha_mps2[k] = c.q_alpha_mps2;
     out.max_mps2[k] = active_drag_limit_mps2(c);
     out.min_mps2[k] = lift_need_drag_mps2(g - v * v / r, cl, cd);
-    // Feasibility floor: (7.7) with the Earth-rate term of (2.45) (level_flight_lift_need_mps2),
+    // Feasibility floor: (7.7) with the Earth-rate term of (2.33) (level_flight_lift_need_mps2),
     // lat and chi on the planning-point -> TAEM great circle at the energy fraction (the range
     // fraction is not known before the fit). (7.7) itself stays the thesis's Lmin for the
     // initial drag and the E2 breakpoint; the closure test needs the floor the vehicle really

@@ -2,7 +2,7 @@
 // breakpoints E1, E2 of the profile (§7.2) and its end drags Di, Df (§7.6).
 //   h(E):  zero-bank equilibrium glide L = g - V^2/r (2.50) at the grid's alpha;
 //   upper: active path-constraint drag, the least of (7.3)-(7.6);
-//   lower: Lmin CD/CL (7.7), and the floor with the Earth-rate term of (2.45) for the closure test.
+//   lower: Lmin CD/CL (7.7), and the floor with the Earth-rate term of (2.33) for the closure test.
 #pragma once
 
 #include "guidance_types.hpp"
@@ -42,7 +42,7 @@ struct DragCorridor {
   GridValues q_alpha_mps2{};    // (7.4)
   GridValues max_mps2{};        // active maximum, least of (7.3)-(7.6)
   GridValues min_mps2{};        // Lmin (7.7), rotation-free
-  GridValues floor_mps2{};      // Lmin with the Earth-rate term of (2.45): the closure test
+  GridValues floor_mps2{};      // Lmin with the Earth-rate term of (2.33): the closure test
 };
 
 /// Great circle from the planning point to the TAEM point.

@@ -49,7 +49,7 @@ class EntryPlanner {
   /// Active maximum-drag and minimum-drag (Lmin (7.7), rotation-free) corridor of the last plan, on the grid.
   double corridor_max(int k) const { return ws_.corridor.corridor.max_mps2[k]; }
   double corridor_min(int k) const { return ws_.corridor.corridor.min_mps2[k]; }
-  /// Lmin with the Earth-rate term of (2.45): the floor the closure test uses.
+  /// Lmin with the Earth-rate term of (2.33): the floor the closure test uses.
   double corridor_floor(int k) const { return ws_.corridor.corridor.floor_mps2[k]; }
   double grid_energy(int k) const { return ws_.grid.energy_Jpkg[k]; }
 

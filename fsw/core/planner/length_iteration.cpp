@@ -145,7 +145,7 @@ bool lateral_short(const PlanContext& ctx, const ReversalState& rev, const Plann
 }
 
 bool below_glide_floor(const PlanContext& ctx, const PlanWorkspace& ws) {
-  // Floor: L = g - V^2/r - 2 omega V cos(lat) sin(chi) ((2.45) with gamma' = 0 and sigma = 0;
+  // Floor: L = g - V^2/r - 2 omega V cos(lat) sin(chi) ((2.33) with gamma' = 0 and sigma = 0;
   // the Earth-rate term is a sixth of the need for the eastbound X-33 at Mach 20, so the
   // rotation-free Lmin (7.7) would call its nominal plan infeasible), lat and chi on the
   // planning-point -> TAEM great circle at the planned range fraction. Checked from where the

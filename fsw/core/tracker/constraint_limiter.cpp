@@ -55,7 +55,7 @@ double ConstraintLimiter::pullout_drag_mps2(const RelativeState& s, double sigma
   if (!(D > params_->min_drag_mps2)) return D;
   const double dlnrho_dr = models_->dlnrho_dr_fd(s.altitude_m, kTrackerDensityGradientStep_m);
   if (!(dlnrho_dr < 0.0)) return D;
-  // Net downward acceleration without lift, with the Earth-rate term of (2.45) (an eastbound
+  // Net downward acceleration without lift, with the Earth-rate term of (2.33) (an eastbound
   // vehicle near orbital speed is held up by it).
   const double g_eff = level_flight_lift_need_mps2(s.radius_m, s.velocity_mps * std::cos(s.flight_path_rad),
                                                    s.latitude_rad, s.heading_rad);
