@@ -397,7 +397,6 @@ CycleOutput Executive::step(const NavInput& nav) {
     wait_start_ns_ = now_ns();
     cycle_ns_so_far_ = cycle_now_ns() - t_start;
     ++counters_.plan_waits;
-    waits_started_.fetch_add(1, std::memory_order_acq_rel);
     CycleOutput wait;
     wait.tick = nav.tick;
     wait.t_s = nav.state.t_s;

@@ -226,8 +226,6 @@ class Executive {
   const ExecCounters& counters() const { return counters_; }
   const ReferenceProfile& active_profile() const { return active_; }
   bool has_profile() const { return has_profile_; }
-  /// Number of lockstep waits started (observable from another thread: test hook).
-  int waits_started() const { return waits_started_.load(std::memory_order_acquire); }
   /// The last command emitted for an accepted sample (what is held on rejection / link loss).
   const CycleOutput& last_valid_output() const { return last_valid_; }
 
@@ -275,7 +273,6 @@ class Executive {
   SpscQueue<PlanResult, 2> results_;
   std::thread worker_;
   std::atomic<bool> stop_{false};
-  std::atomic<int> waits_started_{0};
   PlanResult worker_result_;      // touched by the worker thread only
 
   // Executive-thread state.
