@@ -1,4 +1,4 @@
-// Predictor-corrector plan benchmarks (issue 36: a plan from the entry interface <= 10 ms median,
+// Predictor-corrector plan benchmarks (budget: a plan from the entry interface <= 10 ms median,
 // <= 50 ms worst for X-33 and the Orbiter). A fresh plan (no previous solution: the corrector
 // starts from half the largest bank) and a replan from the same state warm-started by the
 // previous solution (the cost of the plans that follow in flight). Each case also runs as

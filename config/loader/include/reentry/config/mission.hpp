@@ -101,7 +101,7 @@ struct GuidanceParams {
   bool onboard_trim = true;              // trimmed on-board aero tables where moment data exist
   double initial_descent_drag_mps2 = 0.05 * physics::kStandardGravity_mps2;  // hold attitude until sensed drag exceeds this
   std::vector<TuningValue> tuning;       // planner / tracker tunables, in file order of their tables
-  // Guidance law (issue 36): "drag_tracking" (planner + tracker) or "predictor_corrector"
+  // Guidance law: "drag_tracking" (planner + tracker) or "predictor_corrector"
   // (fsw/core/predictor_corrector); the latter's tunables ([guidance.predictor_corrector]) come
   // through `tuning` as "predictor_corrector.<key>".
   std::string law = "drag_tracking";
