@@ -30,8 +30,16 @@ def arrival_az(lon1, lat1, lon2, lat2):
     y = math.sin(-dl) * math.cos(p1)
     x = math.cos(p2) * math.sin(p1) - math.sin(p2) * math.cos(p1) * math.cos(-dl)
     return (math.degrees(math.atan2(y, x)) + 180.0) % 360.0
+def law_line(m):
+    """[guidance] law: drag_tracking (the default, no line) or the mission's own choice."""
+    law = m.get("law", "drag_tracking")
+    if law == "drag_tracking":
+        return ""
+    return ('law = "%s"   # the guidance law of this mission (docs/guidance_design.md 10), the better one by\n'
+            '# the reference campaigns of both laws (docs/law_comparison.md)\n' % law)
+
 M = {
- "horus": dict(src="table 3.1 (Mooij 2010)", vehicle="horus", h=119.96, lon=-105.97, lat=-22.06, v=7438.1, g=-1.4263, chi=70.437,
+ "horus": dict(src="table 3.1 (Mooij 2010)", vehicle="horus", law="predictor_corrector", h=119.96, lon=-105.97, lat=-22.06, v=7438.1, g=-1.4263, chi=70.437,
    th=24.8597, tv=660.05, tlon=-53.736, tlat=4.9537, comment_lat="4.9537 (extraction shows 49.537; DESIGN 7)",
    qdot=("530.0e3", "530 kW/m^2"), n=2.5, qa=("%.6f" % (191397 * D), "191,397 N deg/m^2 -> Pa rad"), q=None, amax=43.9, adot=5, sdot=10,
    tol="""range_tol_m = 3000.0          # ADOPTED: MBB 1988 (thesis 3.1.2) puts TAEM 60 km from the HAC point but gives
@@ -67,7 +75,7 @@ flight_path_tol_deg = 25.0
 hac_radius_m = 4650.0         # HAC diameter about 9.3 km (thesis 3.1.2)""",
    alpha=[(0.0, 20.0), (0.12, 20.0), (0.414, 46.0), (1.0, 46.0)],
    alpha_note="thesis fig 3.17 (Saraf 2003) and 8.3: 46 deg from entry down to the breakpoint at E = 0.414, where alpha 'starts decreasing from 46 to 20 deg'. The end of the ramp (20 deg at E = 0.12, held to TAEM) is OUR reading: the figure is not legible in the text extraction."),
- "orbiter": dict(src="table 3.3 (Harpold & Graves 1978, Glass 2008)", vehicle="orbiter", h=121.9, lon=243.0, lat=-18.3, v=7622, g=-1.438, chi=38.3,
+ "orbiter": dict(src="table 3.3 (Harpold & Graves 1978, Glass 2008)", vehicle="orbiter", law="predictor_corrector", h=121.9, lon=243.0, lat=-18.3, v=7622, g=-1.438, chi=38.3,
    th=24.4, tv=762, tlon=279.5, tlat=28.7, comment_lat="28.7 N (Kennedy; best reading, signs not confirmed by the thesis)",
    qdot=("%.4f" % (70 * BTU), "70 BTU/(ft^2 s)"), n=2.5, qa=None, q=("%.5f" % (342 * PSF), "342 psf"), amax=45, adot=5, sdot=2,
    tol="""range_tol_m = 11000.0         # ADOPTED: X-33 values (same Kennedy TAEM/HAC geometry and TAEM energy class)
@@ -153,7 +161,7 @@ drag_profile = "smooth"
 initial_drag = "actual"
 onboard_atmosphere = "table"
 initial_descent_drag_mps2 = 0.4903325   # 0.05 g (Shuttle practice)
-# Every tunable of the planner and the tracker keeps its documented default (the same for all
+{law_line(m)}# Every tunable of the planner and the tracker keeps its documented default (the same for all
 # vehicles; `reentry_config_check --params <mission>` lists them with units and ranges). A
 # mission may set any of them here, e.g. [guidance.tracker] corridor_half_width_min_deg = 3.0.
 {m.get('tracker', '')}

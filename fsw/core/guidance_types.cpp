@@ -14,6 +14,7 @@ const char* to_string(Status s) {
     case Status::kNotConverged: return "not_converged";
     case Status::kCapacityExceeded: return "capacity_exceeded";
     case Status::kRangeTooLong: return "range_too_long";
+    case Status::kRangeTooShort: return "range_too_short";
   }
   return "unknown";
 }

@@ -26,6 +26,7 @@ enum class Status : std::int8_t {
   kNotConverged = 7,        // trajectory-length iteration did not meet tolerances
   kCapacityExceeded = 8,
   kRangeTooLong = 9,        // even the maximum-drag profile flies past the aim point (best effort given)
+  kRangeTooShort = 10,      // even the longest-flying profile ends short of the aim point (best effort given)
 };
 
 const char* to_string(Status s);
@@ -64,6 +65,8 @@ struct RelativeState {
   double drag_mps2 = 0.0;             // sensed (IMU) drag acceleration
   double lift_mps2 = 0.0;             // sensed lift acceleration magnitude
   double lift_over_drag_scale = 1.0;  // sensed L/D over the on-board model's, filtered (1: model)
+  double bank_rad = 0.0;              // bank flown (the law's filtered command, signed; planner input)
+  double alpha_rad = 0.0;             // alpha flown (the law's filtered command; planner input, 0: not given)
 };
 
 /// x bounded to [lo, hi] (lo <= hi); a NaN passes through (the callers check finiteness).

@@ -250,14 +250,16 @@ void Executive::adopt(PlanResult& r, std::int64_t tick, double t_s, CycleOutput&
   // A range-too-long plan is the maximum-drag profile inside the constraints: the shortest
   // range the vehicle can fly. It is flown (flagged) rather than no plan or a stale one,
   // both of which would fly further past the aim point and without the constraint bound.
-  const bool best_effort = r.status == Status::kRangeTooLong && r.profile.n_points >= 2;
+  // Likewise a range-too-short plan (a law's longest-flying profile, not flagged).
+  const bool best_effort = (r.status == Status::kRangeTooLong || r.status == Status::kRangeTooShort) &&
+                           r.profile.n_points >= 2;
   if (r.status != Status::kOk && !best_effort) {
     ++counters_.planner_failures;
     sticky_flags_ |= kHealthPlannerFailed;
     return;
   }
   sticky_flags_ &= ~kHealthPlannerFailed;
-  if (best_effort) sticky_flags_ |= kHealthRangeTooLong;
+  if (r.status == Status::kRangeTooLong) sticky_flags_ |= kHealthRangeTooLong;
   else sticky_flags_ &= ~kHealthRangeTooLong;
   active_ = r.profile;
   active_.seq = next_plan_seq_++;
@@ -395,7 +397,6 @@ CycleOutput Executive::step(const NavInput& nav) {
     wait_start_ns_ = now_ns();
     cycle_ns_so_far_ = cycle_now_ns() - t_start;
     ++counters_.plan_waits;
-    waits_started_.fetch_add(1, std::memory_order_acq_rel);
     CycleOutput wait;
     wait.tick = nav.tick;
     wait.t_s = nav.state.t_s;
@@ -473,7 +474,12 @@ CycleOutput Executive::finish_cycle(const NavInput& nav, CycleOutput& out, std::
                s.t_s - last_request_t_s_ >= cfg_.drag_error_replan_spacing_s) {
       want = true;
     }
-    if (want) request_plan(nav.tick, s);
+    if (want) {
+      RelativeState from = s;
+      from.bank_rad = out.sigma_rad;  // the attitude the law flies (planner input)
+      from.alpha_rad = out.alpha_rad;
+      request_plan(nav.tick, from);
+    }
   }
 
   std::int32_t flags = sticky_flags_ | cycle_flags_;

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "exec/spsc_queue.hpp"
+#include "physics/earth_constants.hpp"
 #include "guidance_types.hpp"
 
 namespace reentry::fsw::exec {
@@ -130,7 +131,7 @@ struct ExecConfig {
   double replan_period_s = 50.0;
   double replan_drag_error_frac = 0.15;
   double drag_error_replan_spacing_s = 5.0;  // least spacing of drag-error replans (a persistent error does not request every cycle)
-  double initial_descent_drag_mps2 = 0.05 * 9.80665;  // replan from the captured state once sensed drag exceeds this
+  double initial_descent_drag_mps2 = 0.05 * physics::kStandardGravity_mps2;  // replan from the captured state once sensed drag exceeds this
   double plan_wait_limit_s = 30.0;          // bound of the lockstep wait for a late plan
   double replan_floor_energy_Jpkg = 0.0;    // no new plans below this energy (terminal phase)
   PlanMode mode = PlanMode::kLockstep;
@@ -225,8 +226,6 @@ class Executive {
   const ExecCounters& counters() const { return counters_; }
   const ReferenceProfile& active_profile() const { return active_; }
   bool has_profile() const { return has_profile_; }
-  /// Number of lockstep waits started (observable from another thread: test hook).
-  int waits_started() const { return waits_started_.load(std::memory_order_acquire); }
   /// The last command emitted for an accepted sample (what is held on rejection / link loss).
   const CycleOutput& last_valid_output() const { return last_valid_; }
 
@@ -274,7 +273,6 @@ class Executive {
   SpscQueue<PlanResult, 2> results_;
   std::thread worker_;
   std::atomic<bool> stop_{false};
-  std::atomic<int> waits_started_{0};
   PlanResult worker_result_;      // touched by the worker thread only
 
   // Executive-thread state.

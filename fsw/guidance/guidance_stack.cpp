@@ -8,22 +8,58 @@
 #include "reentry/config/mission.hpp"
 
 namespace reentry::fsw {
+namespace {
+
+// The alpha and sigma rate filters of either law, from the mission's control limits.
+std::string init_filters(const config::Mission& m, double dt_s, RateFilter& alpha, RateFilter& sigma) {
+  Status st = alpha.init(m.constraints.alpha_rate_max_radps, m.constraints.alpha_accel_max_radps2, dt_s);
+  if (st != Status::kOk) return std::string("alpha filter init (constraints.alpha_rate/accel): ") + to_string(st);
+  alpha.set_bounds(0.0, m.constraints.alpha_max_rad);
+  st = sigma.init(m.constraints.sigma_rate_max_radps, m.constraints.sigma_accel_max_radps2, dt_s);
+  if (st != Status::kOk) return std::string("sigma filter init (constraints.sigma_rate/accel): ") + to_string(st);
+  return {};
+}
+
+// A law's commands through the rate filters, which start at its first command (no artificial
+// ramp from zero at the entry interface), and its telemetry.
+template <class LawCommand>
+void filtered_output(const LawCommand& c, bool& started, RateFilter& alpha, RateFilter& sigma, exec::LawOutput& out) {
+  if (!started) {
+    alpha.reset(c.alpha_rad);
+    sigma.reset(c.sigma_rad);
+    started = true;
+  }
+  out.alpha_rad = alpha.step(c.alpha_rad);
+  out.sigma_rad = sigma.step(c.sigma_rad);
+  out.phase = c.phase;
+  out.lift_over_drag_scale = c.lift_over_drag_scale;
+  out.tracker = c.telemetry;
+}
+
+}  // namespace
 
 Status TrackerLaw::step(const RelativeState& s, double dt_s, bool /*has_profile*/, exec::LawOutput& out) {
   if (started_) tracker.set_flown_attitude(alpha_filter.value(), sigma_filter.value());
   const Status st = tracker.step(s, dt_s, last);
-  if (st != Status::kOk) return st;
-  if (!started_) {
-    alpha_filter.reset(last.alpha_rad);
-    sigma_filter.reset(last.sigma_rad);
-    started_ = true;
-  }
-  out.alpha_rad = alpha_filter.step(last.alpha_rad);
-  out.sigma_rad = sigma_filter.step(last.sigma_rad);
-  out.phase = last.phase;
-  out.lift_over_drag_scale = last.lift_over_drag_scale;
-  out.tracker = last.telemetry;
-  return Status::kOk;
+  if (st == Status::kOk) filtered_output(last, started_, alpha_filter, sigma_filter, out);
+  return st;
+}
+
+Status PcLaw::step(const RelativeState& s, double dt_s, bool /*has_profile*/, exec::LawOutput& out) {
+  if (started_) cycle.set_flown_attitude(alpha_filter.value(), sigma_filter.value());
+  const Status st = cycle.step(s, dt_s, last);
+  if (st == Status::kOk) filtered_output(last, started_, alpha_filter, sigma_filter, out);
+  return st;
+}
+
+exec::PlanComputer& GuidanceStack::plan_computer() {
+  if (pc_planner) return *pc_planner;
+  return *planner;
+}
+
+exec::CommandLaw& GuidanceStack::command_law() {
+  if (pc_law) return *pc_law;
+  return *law;
 }
 
 namespace {
@@ -83,31 +119,44 @@ std::string GuidanceStack::create(const config::Mission& mission, exec::PlanMode
   const config::Mission& m = *source;
   const double dt_s = 1.0 / m.guidance.gnc_rate_hz;
   auto setup = std::make_unique<GuidanceSetup>();
-  const std::string err = make_guidance_setup(m, *setup);
+  std::string err = make_guidance_setup(m, *setup);
   if (!err.empty()) return err;
-  planner = std::make_unique<PlannerAdapter>();
-  law = std::make_unique<TrackerLaw>();
   executive = std::make_unique<exec::Executive>();
   const GuidanceSetup& g = *setup;
-  Status st = planner->planner.init(g.models, g.alpha_profile, g.mission, g.params);
-  if (st != Status::kOk) return std::string("planner init: ") + to_string(st);
-  st = law->tracker.init(g.models, g.alpha_profile, g.mission, g.params);
-  if (st != Status::kOk) return std::string("tracker init: ") + to_string(st);
-  st = law->alpha_filter.init(m.constraints.alpha_rate_max_radps, m.constraints.alpha_accel_max_radps2, dt_s);
-  if (st != Status::kOk) return std::string("alpha filter init (constraints.alpha_rate/accel): ") + to_string(st);
-  law->alpha_filter.set_bounds(0.0, m.constraints.alpha_max_rad);
-  st = law->sigma_filter.init(m.constraints.sigma_rate_max_radps, m.constraints.sigma_accel_max_radps2, dt_s);
-  if (st != Status::kOk) return std::string("sigma filter init (constraints.sigma_rate/accel): ") + to_string(st);
   config.gnc_rate_hz = m.guidance.gnc_rate_hz;
   config.plan_latency_ticks = m.guidance.plan_latency_ticks;
   config.replan_period_s = m.guidance.replan_period_s;
   config.replan_drag_error_frac = m.guidance.replan_drag_error_frac;
   config.drag_error_replan_spacing_s = m.guidance.drag_error_replan_spacing_s;
   config.initial_descent_drag_mps2 = m.guidance.initial_descent_drag_mps2;
-  config.replan_floor_energy_Jpkg = law->tracker.terminal_energy_Jpkg();
   config.mode = mode;
+  Status st = Status::kOk;
+  if (g.law == GuidanceLaw::kPredictorCorrector) {
+    pc_planner = std::make_unique<PcPlannerAdapter>();
+    pc_law = std::make_unique<PcLaw>();
+    const PcPlanTiming timing{m.guidance.plan_latency_ticks, dt_s};
+    const double capture = g.params.tracker.initial_descent_drag_mps2;
+    st = pc_planner->planner.init(g.models, g.alpha_profile, g.mission, g.pc_params, capture, timing);
+    if (st != Status::kOk) return std::string("predictor-corrector plan init: ") + to_string(st);
+    st = pc_law->cycle.init(g.models, g.alpha_profile, g.mission, g.pc_params, g.params.tracker, capture);
+    if (st != Status::kOk) return std::string("predictor-corrector cycle init: ") + to_string(st);
+    err = init_filters(m, dt_s, pc_law->alpha_filter, pc_law->sigma_filter);
+    // The law's own schedule: its period, and plans until the last fraction of the span.
+    config.replan_period_s = g.pc_params.replan_period_s;
+    config.replan_floor_energy_Jpkg = pc_law->cycle.replan_floor_energy_Jpkg();
+  } else {
+    planner = std::make_unique<PlannerAdapter>();
+    law = std::make_unique<TrackerLaw>();
+    st = planner->planner.init(g.models, g.alpha_profile, g.mission, g.params);
+    if (st != Status::kOk) return std::string("planner init: ") + to_string(st);
+    st = law->tracker.init(g.models, g.alpha_profile, g.mission, g.params);
+    if (st != Status::kOk) return std::string("tracker init: ") + to_string(st);
+    err = init_filters(m, dt_s, law->alpha_filter, law->sigma_filter);
+    config.replan_floor_energy_Jpkg = law->tracker.terminal_energy_Jpkg();
+  }
+  if (!err.empty()) return err;
   config.nav.entry = entry_envelope(m, g.models);
-  st = executive->init(config, *planner, *law);
+  st = executive->init(config, plan_computer(), command_law());
   if (st != Status::kOk) return std::string("executive init (guidance timing parameters): ") + to_string(st);
   return {};
 }

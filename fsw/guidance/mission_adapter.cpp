@@ -59,6 +59,8 @@ std::string key_error(const config::Mission& m, const std::string& key, const st
   return m.source_file + ": key 'guidance." + key + "': " + what;
 }
 
+constexpr const char* kPcPrefix = "predictor_corrector.";
+
 }  // namespace
 
 std::string read_atmosphere_table(const std::string& path, std::vector<double>& h, std::vector<double>& rho,
@@ -144,6 +146,7 @@ std::string guidance_params_from_mission(const config::Mission& m, GuidanceLawPa
     for (const TuningApplier* a : {&shared, &planner, &tracker}) {
       if (a->found && !a->error.empty()) return key_error(m, v.key, a->error);
     }
+    if (v.key.rfind(kPcPrefix, 0) == 0) continue;  // the predictor-corrector's (pc_params_from_mission)
     if (!shared.found && !planner.found && !tracker.found) {
       return key_error(m, v.key, "unknown key (value " + fmt(v.value) +
                                      "); check spelling and unit suffix (reentry_config_check --params lists the keys)");
@@ -153,6 +156,28 @@ std::string guidance_params_from_mission(const config::Mission& m, GuidanceLawPa
     const std::string key = bad;
     const std::string full = key.rfind("planner.", 0) == 0 || key == "terminal_span_fraction" ? key : "tracker." + key;
     return key_error(m, full, "inconsistent with the related parameters (see its documented relation)");
+  }
+  return {};
+}
+
+std::string pc_params_from_mission(const config::Mission& m, GuidanceLaw& law, PredictorCorrectorParams& p) {
+  p = PredictorCorrectorParams{};
+  const std::string& name = m.guidance.law;
+  if (name == "drag_tracking") law = GuidanceLaw::kDragTracking;
+  else if (name == "predictor_corrector") law = GuidanceLaw::kPredictorCorrector;
+  else return key_error(m, "law", "value \"" + name + "\" is not one of \"drag_tracking\", \"predictor_corrector\"");
+  for (const config::TuningValue& v : m.guidance.tuning) {
+    if (v.key.rfind(kPcPrefix, 0) != 0) continue;
+    TuningApplier pc{v, kPcPrefix, false, {}};
+    visit_pc_params(p, pc);
+    if (pc.found && !pc.error.empty()) return key_error(m, v.key, pc.error);
+    if (!pc.found) {
+      return key_error(m, v.key, "unknown key (value " + fmt(v.value) +
+                                     "); check spelling and unit suffix (reentry_config_check --params lists the keys)");
+    }
+  }
+  if (const char* bad = pc_params_inconsistency(p)) {
+    return key_error(m, std::string(kPcPrefix) + bad, "inconsistent with the related parameters (see its documented relation)");
   }
   return {};
 }
@@ -227,6 +252,7 @@ std::string alpha_profile_from_mission(const config::Mission& m, AlphaProfile& p
 std::string make_guidance_setup(const config::Mission& m, GuidanceSetup& out) {
   out.mission = to_guidance_mission(m);
   std::string err = guidance_params_from_mission(m, out.params);
+  if (err.empty()) err = pc_params_from_mission(m, out.law, out.pc_params);
   if (err.empty()) err = onboard_models_from_mission(m, out.models);
   if (err.empty()) err = alpha_profile_from_mission(m, out.alpha_profile);
   return err;
@@ -237,6 +263,12 @@ std::string describe_guidance_params(const GuidanceLawParams& p) {
   visit_shared_guidance_params(p, ParamPrinter{"guidance.", &os});
   visit_planner_params(p.planner, ParamPrinter{"guidance.planner.", &os});
   visit_tracker_params(p.tracker, ParamPrinter{"guidance.tracker.", &os});
+  return os.str();
+}
+
+std::string describe_pc_params(const PredictorCorrectorParams& p) {
+  std::ostringstream os;
+  visit_pc_params(p, ParamPrinter{std::string("guidance.") + kPcPrefix, &os});
   return os.str();
 }
 
@@ -251,6 +283,13 @@ Status with_setup(const config::Mission& m, F&& init) {
 
 Status init_from_mission(EntryPlanner& planner, const config::Mission& m) {
   return with_setup(m, [&](const GuidanceSetup& s) { return planner.init(s.models, s.alpha_profile, s.mission, s.params); });
+}
+Status init_from_mission(PredictorCorrectorPlanner& planner, const config::Mission& m) {
+  const PcPlanTiming timing{m.guidance.plan_latency_ticks, 1.0 / m.guidance.gnc_rate_hz};
+  return with_setup(m, [&](const GuidanceSetup& s) {
+    return planner.init(s.models, s.alpha_profile, s.mission, s.pc_params, s.params.tracker.initial_descent_drag_mps2,
+                        timing);
+  });
 }
 Status init_from_mission(EntryTracker& tracker, const config::Mission& m) {
   return with_setup(m, [&](const GuidanceSetup& s) { return tracker.init(s.models, s.alpha_profile, s.mission, s.params); });

@@ -1,6 +1,8 @@
 // Zero heap allocation after start-up (DESIGN §8): counted with the C allocator interposed,
 // during 10,000 tracker + filter cycles, complete plans for two missions, and executive
-// cycles that request, compute and adopt plans. Start-up (loading, create(), init) may allocate.
+// cycles that request, compute and adopt plans; the same for the predictor-corrector law (its
+// plans for the four missions, its cycles, executive cycles adopting its plans). Start-up
+// (loading, create(), init) may allocate.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +17,7 @@
 #include "guidance/guidance_stack.hpp"
 #include "malloc_counter.hpp"
 #include "planner/entry_planner.hpp"
+#include "predictor_corrector/pc_planner.hpp"
 #include "reentry/config/mission.hpp"
 
 namespace reentry::fsw {
@@ -147,6 +150,91 @@ TEST(Allocation, ExecutiveCyclesWithPlanAdoptionAllocateNothing) {
   }
   EXPECT_EQ(allocations, 0);
   EXPECT_GE(stack.executive->counters().planner_runs, 2);  // entry plan and replans were computed
+  EXPECT_GE(stack.executive->counters().plans_adopted, 1)
+      << "last plan status: " << to_string(stack.executive->counters().last_plan_status);
+}
+
+// The mission with the predictor-corrector law selected.
+config::Mission with_pc_law(const char* name) {
+  config::Mission m = load(name);
+  m.guidance.law = "predictor_corrector";
+  return m;
+}
+
+TEST(Allocation, PredictorCorrectorPlansForFourMissionsAllocateNothing) {
+  SKIP_WITHOUT_COUNTER();
+  for (const char* name : {"x33", "horus", "orbiter", "x38"}) {
+    const config::Mission m = with_pc_law(name);
+    auto planner = std::make_unique<PredictorCorrectorPlanner>();
+    auto profile = std::make_unique<ReferenceProfile>();
+    ASSERT_EQ(init_from_mission(*planner, m), Status::kOk) << name;
+    const RelativeState entry = planner->entry_state();
+    Status st;
+    std::int64_t allocations;
+    {
+      MallocCounter counter;
+      st = planner->plan(entry, *profile);
+      allocations = counter.count();
+    }
+    EXPECT_EQ(allocations, 0) << name << " plan status " << to_string(st);
+    EXPECT_GE(planner->diagnostics().predictions, 2) << name << ": the corrector must have run";
+  }
+}
+
+TEST(Allocation, TenThousandPredictorCorrectorCyclesAllocateNothing) {
+  SKIP_WITHOUT_COUNTER();
+  const config::Mission m = with_pc_law("x33");
+  GuidanceStack stack;
+  ASSERT_EQ(stack.create(m, exec::PlanMode::kSynchronous), "");
+  ASSERT_TRUE(stack.pc_law && stack.pc_planner);
+  auto profile = std::make_unique<ReferenceProfile>();
+  auto& planner = stack.pc_planner->planner;
+  ASSERT_EQ(planner.plan(planner.entry_state(), *profile), Status::kOk);
+  stack.pc_law->set_profile(*profile);
+  const int n = profile->n_points;
+  exec::LawOutput out;
+  int finite = 0;
+  std::int64_t allocations;
+  {
+    MallocCounter counter;
+    for (int i = 0; i < 10000; ++i) {
+      const int k = 1 + (i * (n - 2)) / 10000;  // entry to TAEM, captured from the start
+      const double drag_factor = 1.0 + 0.1 * std::sin(0.01 * i);
+      const RelativeState s = state_on(*profile, k, 0.1 * i, drag_factor, m.entry.latitude_rad, m.entry.longitude_rad);
+      if (stack.pc_law->step(s, 0.1, true, out) == Status::kOk && std::isfinite(out.sigma_rad) &&
+          std::isfinite(out.alpha_rad)) {
+        ++finite;
+      }
+    }
+    allocations = counter.count();
+  }
+  EXPECT_EQ(allocations, 0);
+  EXPECT_EQ(finite, 10000);
+  EXPECT_TRUE(stack.pc_law->cycle.captured());
+}
+
+TEST(Allocation, ExecutiveCyclesWithPredictorCorrectorPlansAllocateNothing) {
+  SKIP_WITHOUT_COUNTER();
+  const config::Mission m = with_pc_law("x33");
+  GuidanceStack stack;
+  ASSERT_EQ(stack.create(m, exec::PlanMode::kSynchronous), "");
+  auto profile = std::make_unique<ReferenceProfile>();
+  auto& planner = stack.pc_planner->planner;
+  ASSERT_EQ(planner.plan(planner.entry_state(), *profile), Status::kOk);
+  const int n = profile->n_points;
+  std::int64_t allocations;
+  {
+    MallocCounter counter;
+    for (int i = 0; i < 1000; ++i) {
+      exec::NavInput nav;
+      nav.tick = i;
+      nav.state = state_on(*profile, 1 + (i * (n - 2)) / 1000, 0.1 * i, 1.0, m.entry.latitude_rad, m.entry.longitude_rad);
+      stack.executive->step(nav);
+    }
+    allocations = counter.count();
+  }
+  EXPECT_EQ(allocations, 0);
+  EXPECT_GE(stack.executive->counters().planner_runs, 2);
   EXPECT_GE(stack.executive->counters().plans_adopted, 1)
       << "last plan status: " << to_string(stack.executive->counters().last_plan_status);
 }

@@ -213,8 +213,8 @@ TEST(Us76Truth, HorusTaemAlphaLeavesAnAltitudeWindowWiderThanTheEndGameScatter) 
   // energy, q*alpha <= its limit at the profile's TAEM alpha bounds the altitude from below
   // and Mach >= mach_target - mach_tol from above. With the US76 layer equations (not the
   // table the models read) and the energy E = V^2/2 - mu/r on the ellipsoid, that window must
-  // be wider than the dispersed end-game altitude scatter (sd 0.4 km, three sd: 1.2 km). At the
-  // 20 deg of the session 14 profile it was 0.57 km.
+  // be wider than the dispersed end-game altitude scatter (sd 0.4 km, three sd: 1.2 km); a
+  // 20 deg TAEM alpha would leave 0.57 km.
   const reentry::config::LoadResult loaded = reentry::config::load_mission("horus");
   ASSERT_TRUE(loaded.ok) << loaded.error;
   const auto& m = loaded.mission;

@@ -34,7 +34,12 @@ int main(int argc, char** argv) {
       return 1;
     }
     std::printf("%s\n", reentry::config::summary_line(result.mission).c_str());
-    if (params) std::printf("%s", reentry::fsw::describe_guidance_params(setup->params).c_str());
+    if (params) {
+      std::printf("guidance.law = %s   {drag_tracking, predictor_corrector}   guidance law flown\n",
+                  result.mission.guidance.law.c_str());
+      std::printf("%s", reentry::fsw::describe_guidance_params(setup->params).c_str());
+      std::printf("%s", reentry::fsw::describe_pc_params(setup->pc_params).c_str());
+    }
   }
   return 0;
 }

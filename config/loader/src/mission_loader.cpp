@@ -22,9 +22,9 @@
 namespace reentry::config {
 namespace {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
-constexpr double kMu_m3ps2 = 3.986004418e14;   // DESIGN 5
-constexpr double kEarthRadius_m = 6378137.0;   // R_cb in (7.8)
+constexpr double kDegToRad = physics::kRadPerDeg;
+constexpr double kMu_m3ps2 = physics::kMuEarth_m3ps2;
+constexpr double kEarthRadius_m = physics::kEarthEquatorialRadius_m;  // R_cb in (7.8)
 
 std::string fmt_double(double v) {
   std::ostringstream os;
@@ -601,9 +601,11 @@ void read_guidance(Reader g, GuidanceParams& gp) {
   gp.onboard_atmosphere = g.choice("onboard_atmosphere", {"exponential", "table"});
   gp.onboard_trim = g.boolean("onboard_trim", false, true);
   gp.initial_descent_drag_mps2 = g.number("initial_descent_drag_mps2", 0.0, 100.0);
-  // The planner's and tracker's tunables ([guidance] numbers not read above, [guidance.planner],
-  // [guidance.tracker]) are validated by the flight software's parameter lists.
-  gp.tuning = g.pass_through_numbers({"planner", "tracker"});
+  // The guidance law; [guidance.predictor_corrector] holds that law's tunables.
+  gp.law = g.choice("law", {"drag_tracking", "predictor_corrector"}, false, "drag_tracking");
+  // The laws' tunables ([guidance] numbers not read above, [guidance.planner], [guidance.tracker],
+  // [guidance.predictor_corrector]) are validated by the flight software's parameter lists.
+  gp.tuning = g.pass_through_numbers({"planner", "tracker", "predictor_corrector"});
   g.finish();
 }
 

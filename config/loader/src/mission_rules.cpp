@@ -12,14 +12,14 @@
 namespace reentry::config {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+constexpr double kRadToDeg = physics::kDegPerRad;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 // Integration tolerances below what double arithmetic resolves are silently ineffective: the
 // relative one below 100 eps, the absolute ones below 10 eps of an Earth radius (position) and
 // of an orbital speed (velocity).
 constexpr double kRelTolMin = 100.0 * kEps;
 constexpr double kRelTolMax = 1e-2;
-constexpr double kAbsTolPositionMin_m = 10.0 * kEps * 6378137.0;
+constexpr double kAbsTolPositionMin_m = 10.0 * kEps * physics::kEarthEquatorialRadius_m;
 constexpr double kAbsTolVelocityMin_mps = 10.0 * kEps * 8000.0;
 
 std::string num(double v) {

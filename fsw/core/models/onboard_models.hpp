@@ -233,7 +233,6 @@ class OnboardModels {
   double heat_flux_coefficient(double alpha_rad) const;
   /// c2 of q = C sqrt(rho) V^c2.
   double heat_flux_velocity_exponent() const { return heat_exponent_; }
-  HeatFluxModel heat_flux_model() const { return heating_; }
   static constexpr double kHeatC1 = 1.06584e8;  // (3.5), W/m^(3/2)
   static constexpr double kBettsHeatC2 = 3.07;  // Betts 2010, 6.1
   static constexpr double kHeatC2 = 3.0;

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "params/param_visitor.hpp"
+#include "physics/earth_constants.hpp"
 
 namespace reentry::fsw {
 
@@ -33,7 +34,7 @@ struct TrackerParams {
   double terminal_settling = 1.5;            // terminal phase: omega >= settling / t_go ...
   double terminal_omega_max_factor = 3.0;    // ... and at most this many omega0
   // Initial descent and capture.
-  double initial_descent_drag_mps2 = 0.05 * 9.80665;  // from [guidance] initial_descent_drag_mps2 (executive too)
+  double initial_descent_drag_mps2 = 0.05 * physics::kStandardGravity_mps2;  // from [guidance] initial_descent_drag_mps2 (executive too)
   double capture_drag_fraction = 0.1;        // shallow-entry capture from this share of the threshold drag
   double capture_lookahead_energy_fraction = 0.02;  // reference compared at E - fraction E_entry
   double pullout_complete_ratio = 1.05;      // pull-out complete when D would rise less than this factor
@@ -72,7 +73,7 @@ struct TrackerParams {
   double min_lift_over_drag = 1e-3;          // below this the sensed L/D is not used
   // Plausibility of the navigated state (beyond: rejected, never pushed through the loop).
   double max_speed_mps = 12000.0;
-  double max_accel_mps2 = 100.0 * 9.80665;
+  double max_accel_mps2 = 100.0 * physics::kStandardGravity_mps2;
 };
 
 /// Visits every field a mission file may set, with its key, unit and documented range: the

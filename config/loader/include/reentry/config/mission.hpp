@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "mission/mission_interface.hpp"
+#include "physics/earth_constants.hpp"
 #include <string>
 #include <vector>
 
@@ -98,8 +99,12 @@ struct GuidanceParams {
   std::string initial_drag = "actual";   // "actual" or "lmin" (thesis 7.6)
   std::string onboard_atmosphere = "exponential";  // "exponential" or "table"
   bool onboard_trim = true;              // trimmed on-board aero tables where moment data exist
-  double initial_descent_drag_mps2 = 0.05 * 9.80665;  // hold attitude until sensed drag exceeds this
+  double initial_descent_drag_mps2 = 0.05 * physics::kStandardGravity_mps2;  // hold attitude until sensed drag exceeds this
   std::vector<TuningValue> tuning;       // planner / tracker tunables, in file order of their tables
+  // Guidance law: "drag_tracking" (planner + tracker) or "predictor_corrector"
+  // (fsw/core/predictor_corrector); the latter's tunables ([guidance.predictor_corrector]) come
+  // through `tuning` as "predictor_corrector.<key>".
+  std::string law = "drag_tracking";
 };
 
 struct SimParams {

@@ -1,0 +1,273 @@
+#include "predictor_corrector/pc_planner.hpp"
+
+#include <cmath>
+
+namespace reentry::fsw {
+namespace {
+
+constexpr double kSkipOutMargin_m = 20000.0;  // above the entry altitude after capture: skip-out
+
+int sign_of(double bank_rad) { return bank_rad > 0.0 ? 1 : (bank_rad < 0.0 ? -1 : 0); }
+
+bool finite_state(const RelativeState& s) {
+  const double v[] = {s.t_s,           s.radius_m,      s.longitude_rad, s.latitude_rad,         s.velocity_mps,
+                      s.flight_path_rad, s.heading_rad, s.energy_Jpkg,   s.drag_mps2, s.lift_over_drag_scale,
+                      s.bank_rad, s.alpha_rad};
+  for (double x : v) {
+    if (!std::isfinite(x)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+Status PredictorCorrectorPlanner::init(const OnboardModels& models, const AlphaProfile& alpha_profile,
+                                       const GuidanceMission& mission, const PredictorCorrectorParams& params,
+                                       double capture_drag_mps2, const PcPlanTiming& timing) {
+  initialised_ = false;
+  if (pc_params_inconsistency(params) != nullptr || timing.latency_ticks < 0 || !(timing.tick_s > 0.0)) {
+    return Status::kInvalidInput;
+  }
+  models_ = models;
+  alpha_profile_ = alpha_profile;
+  mission_ = mission;
+  params_ = params;
+  timing_ = timing;
+  capture_drag_mps2_ = capture_drag_mps2;
+  entry_energy_ = specific_energy_Jpkg(kEarthRadius_m + mission.entry.altitude_m, mission.entry.velocity_mps);
+  const TaemTarget& t = mission.taem;
+  taem_energy_ = specific_energy_Jpkg(surface_radius_m(t.latitude_rad) + t.altitude_m, t.velocity_mps);
+  if (!(entry_energy_ > taem_energy_)) return Status::kInvalidInput;
+  model_.init(&models_, &alpha_profile_, entry_energy_, mission.limits.alpha_max_rad);
+  lateral_.init(params_, t, mission.limits.sigma_rate_max_radps, entry_energy_, taem_energy_);
+  PredictorConfig cfg;
+  cfg.limits = pc_limits_from(mission.limits, params.constraint_margin);
+  cfg.capture_drag_mps2 = capture_drag_mps2;
+  cfg.sigma_rate_max_radps = mission.limits.sigma_rate_max_radps;
+  cfg.sigma_accel_max_radps2 = mission.limits.sigma_accel_max_radps2;
+  cfg.skip_out_altitude_m = mission.entry.altitude_m + kSkipOutMargin_m;
+  taem_altitude_ = taem_altitude_target();
+  cfg.terminal = TerminalAltitude{taem_energy_, entry_energy_ - taem_energy_, taem_altitude_};
+  const Status st = predictor_.init(&model_, &lateral_, &params_, cfg);
+  if (st != Status::kOk) return st;
+  have_last_ = false;
+  initialised_ = true;
+  return Status::kOk;
+}
+
+double PredictorCorrectorPlanner::taem_altitude_target() {
+  // The altitude deepest inside the TAEM altitude and Mach bands at the TAEM energy where q and
+  // q alpha at the TAEM alpha stay within their planned fraction (as the drag law's planner).
+  const TaemTarget& t = mission_.taem;
+  const PcLimits lim = pc_limits_from(mission_.limits, params_.constraint_margin);
+  if (!(t.altitude_tol_m > 0.0)) return t.altitude_m;
+  const double alpha = model_.alpha_at(taem_energy_);
+  double best_h = t.altitude_m, best_depth = -1e300;
+  taem_aim_min_m_ = t.altitude_m + t.altitude_tol_m;
+  const int n = params_.taem_altitude_samples;
+  for (int i = 0; i <= n; ++i) {
+    const double h = t.altitude_m - t.altitude_tol_m + 2.0 * t.altitude_tol_m * i / n;
+    const double v = OnboardModels::taem_speed_mps(t.latitude_rad, taem_energy_, h);
+    if (!(v > 0.0)) continue;
+    const double q = 0.5 * models_.atmosphere().density_kgpm3(h) * v * v;
+    if ((lim.q_max_Pa > 0.0 && q > lim.q_max_Pa) || (lim.q_alpha_max_Pa_rad > 0.0 && q * alpha > lim.q_alpha_max_Pa_rad)) {
+      continue;
+    }
+    taem_aim_min_m_ = std::fmin(taem_aim_min_m_, h);  // the lowest TAEM altitude within q and q alpha
+    const double depth = models_.taem_band_depth(t, taem_energy_, h);
+    if (depth > best_depth) {
+      best_depth = depth;
+      best_h = h;
+    }
+  }
+  return best_h;
+}
+
+double PredictorCorrectorPlanner::final_bank_rad(double density_ratio) const {
+  // Quasi-equilibrium glide at the target TAEM state: L cos(sigma_f) = g - V^2/r - 2 w V cos(lat)
+  // sin(chi) ((2.45), gamma' = 0), L at K times the model's density.
+  const TaemTarget& t = mission_.taem;
+  const double h = taem_altitude_;
+  const double v = OnboardModels::taem_speed_mps(t.latitude_rad, taem_energy_, h);
+  if (!(v > 0.0)) return params_.final_bank_max_rad;
+  const double rho = density_ratio * models_.atmosphere().density_kgpm3(h);
+  const double lift = 0.5 * rho * v * v * models_.area_over_mass() *
+                      models_.aero().cl(model_.alpha_at(taem_energy_), models_.mach(h, v));
+  const double need = level_flight_lift_need_mps2(surface_radius_m(t.latitude_rad) + h, v, t.latitude_rad, t.heading_rad);
+  const double c = lift > 0.0 ? need / lift : 1.0;
+  return std::acos(clamp(c, std::cos(params_.final_bank_max_rad), 1.0));
+}
+
+BankProfile PredictorCorrectorPlanner::bank_family() const {
+  BankProfile b;
+  b.lateral_bank_rad = params_.lateral_bank_rad;
+  b.bank_max_rad = params_.bank_max_rad;
+  b.bank_far_rad = params_.bank_damped_max_rad;
+  b.alpha_band_rad = params_.alpha_band_rad;
+  b.alpha_span = params_.alpha_control_scale * params_.alpha_band_rad;
+  b.final_share = params_.final_bank_share;
+  return b;
+}
+
+RelativeState PredictorCorrectorPlanner::entry_state() const {
+  const EntryInterface& e = mission_.entry;
+  RelativeState s;
+  s.radius_m = surface_radius_m(e.latitude_rad) + e.altitude_m;
+  s.altitude_m = s.radius_m - kEarthRadius_m;
+  s.longitude_rad = e.longitude_rad;
+  s.latitude_rad = e.latitude_rad;
+  s.velocity_mps = e.velocity_mps;
+  s.flight_path_rad = e.flight_path_rad;
+  s.heading_rad = e.heading_rad;
+  s.energy_Jpkg = specific_energy_Jpkg(s.radius_m, s.velocity_mps);
+  const AeroSample a = model_.aero(point_mass_from(s), model_.alpha_at(s.energy_Jpkg));
+  s.drag_mps2 = a.drag_mps2 / model_.density_ratio();
+  s.lift_mps2 = a.lift_mps2 / model_.density_ratio();
+  return s;
+}
+
+PredictionStart PredictorCorrectorPlanner::start_from(const RelativeState& from, double& density_ratio) {
+  // The executive advanced speed and energy over the latency by V' = -D, E' = -D V with the
+  // position frozen (exec::predict_state): the speed is taken back to the navigated one and the
+  // whole state is predicted over the latency by the on-board equations, the flown bank held.
+  PointMassState x = point_mass_from(from);
+  for (int i = 0; i < timing_.latency_ticks; ++i) x.velocity_mps += from.drag_mps2 * timing_.tick_s;
+  models_.aero().set_lift_scale(clamp(from.lift_over_drag_scale, params_.lod_ratio_min, params_.lod_ratio_max));
+  // K at the alpha flown (given by the executive; else the profile's with the last plan's shift).
+  model_.set_density_ratio(1.0);
+  model_.set_alpha_shift(have_last_ ? last_bank_.alpha_shift_rad() : 0.0,
+                         taem_energy_ + params_.terminal_span_fraction * (entry_energy_ - taem_energy_), taem_energy_);
+  const double alpha_flown = from.alpha_rad > 0.0 ? from.alpha_rad : model_.alpha_at(energy_of(x));
+  const AeroSample a = model_.aero(x, alpha_flown);
+  density_ratio = 1.0;
+  if (from.drag_mps2 >= 0.1 * capture_drag_mps2_ && a.drag_mps2 > 0.0) {
+    density_ratio = clamp(from.drag_mps2 / a.drag_mps2, params_.drag_ratio_min, params_.drag_ratio_max);
+  }
+  model_.set_density_ratio(density_ratio);
+  for (int i = 0; i < timing_.latency_ticks; ++i) model_.rk4(x, from.bank_rad, from.bank_rad, timing_.tick_s, x);
+  PredictionStart st;
+  st.x = x;
+  st.sigma_flown_rad = from.bank_rad;
+  st.lateral.sign = sign_of(from.bank_rad);
+  st.captured = from.drag_mps2 >= capture_drag_mps2_;
+  return st;
+}
+
+void PredictorCorrectorPlanner::fill(const CorrectorResult& r, const BankProfile& bank, ReferenceProfile& out) const {
+  out.n_points = kProfileCapacity;
+  out.reversal_energy_Jpkg = r.best.first_reversal_energy_Jpkg;
+  out.initial_bank_sign = r.best.first_sign < 0 ? -1 : 1;
+  out.entry_energy_Jpkg = entry_energy_;
+  out.taem_energy_Jpkg = taem_energy_;
+  out.taem_altitude_m = bank.terminal_altitude_m;  // the terminal line's aim (the cycle flies it)
+  out.dc_mps2 = 0.0;
+  out.e1_Jpkg = 0.0;
+  out.e2_Jpkg = 0.0;
+  out.trajectory_length_m = r.best.range_flown_m;
+  out.ranging_blend = 0.0;
+  out.crossrange_err_m = r.best.cross_m;
+  out.downrange_err_m = r.best.along_m;
+  out.iterations = r.predictions;
+  out.converged = r.converged;
+}
+
+Status PredictorCorrectorPlanner::plan(const RelativeState& from, ReferenceProfile& out) {
+  diag_ = PcPlanDiagnostics{};
+  out.n_points = 0;
+  if (!initialised_) return out.status = Status::kInvalidInput;
+  if (!finite_state(from)) return out.status = Status::kNonFinite;
+  if (!(from.velocity_mps > 0.0) || !(from.radius_m > 0.0) || !(from.drag_mps2 >= 0.0)) {
+    return out.status = Status::kInvalidInput;
+  }
+  double k = 1.0;
+  const PredictionStart start = start_from(from, k);
+  BankProfile bank = bank_family();
+  bank.e0_Jpkg = energy_of(start.x);
+  bank.ef_Jpkg = taem_energy_;
+  if (!(bank.e0_Jpkg > taem_energy_)) return out.status = Status::kInvalidInput;
+  bank.sigma_glide_rad = final_bank_rad(k);
+  bank.terminal_altitude_m = taem_altitude_ + (have_last_ ? terminal_offset_m_ : 0.0);
+  bank.control = have_last_ ? last_bank_.control : bank.control_for_bank(0.5 * params_.bank_max_rad);
+  const CorrectorResult r = solve(start, bank, out);
+  Status st = r.status;
+  // Out of predictions: the best plan is still flown when it misses by little (a replan follows).
+  if (st == Status::kNotConverged && std::fabs(r.best.along_m) <= params_.accept_miss_m) st = Status::kOk;
+  bank.control = r.control;
+  fill(r, bank, out);
+  out.status = st;
+  if (st == Status::kOk || st == Status::kRangeTooLong || st == Status::kRangeTooShort) {
+    last_bank_ = bank;
+    have_last_ = true;
+    terminal_offset_m_ = bank.terminal_altitude_m - taem_altitude_;
+  } else {
+    out.n_points = 0;
+  }
+  diag_.status = st;
+  diag_.converged = r.converged;
+  diag_.predictions = r.predictions;
+  diag_.sigma0_rad = r.sigma0_rad;
+  diag_.alpha_shift_rad = r.alpha_shift_rad;
+  diag_.control = r.control;
+  diag_.sigmaf_rad = bank.sigmaf_rad();
+  diag_.density_ratio = k;
+  diag_.lift_scale = models_.aero().lift_scale();
+  diag_.miss_along_m = r.best.along_m;
+  diag_.miss_cross_m = r.best.cross_m;
+  diag_.final_altitude_m = r.best.altitude_m;
+  diag_.final_heading_err_rad = r.best.heading_err_rad;
+  diag_.reversals = r.best.reversals;
+  diag_.best = r.best;
+  return st;
+}
+
+CorrectorResult PredictorCorrectorPlanner::solve(const PredictionStart& start, BankProfile& bank, ReferenceProfile& out) {
+  // sigma_0 for the range; then, while the predicted TAEM altitude misses its target (a late
+  // reversal rolls through wings level), the terminal line's aim moved by the miss and sigma_0
+  // solved again from its last value, within one budget of predictions.
+  const int first = params_.max_predictions - (params_.altitude_iterations > 0 ? params_.altitude_predictions : 0);
+  CorrectorResult r = corrector_.solve(predictor_, start, bank, params_, first, &out, &scratch_);
+  int used = r.predictions;
+  const double band = mission_.taem.altitude_tol_m;
+  for (int i = 0; i < params_.altitude_iterations && used < params_.max_predictions && r.best.usable(); ++i) {
+    const double dh = r.best.altitude_m - taem_altitude_;
+    if (std::fabs(dh) <= params_.altitude_tol_fraction * band) break;
+    // The aim within the band, never below the lowest TAEM altitude q and q alpha allow.
+    bank.terminal_altitude_m = clamp(bank.terminal_altitude_m - dh, std::fmax(taem_altitude_ - band, taem_aim_min_m_),
+                                     taem_altitude_ + band);
+    bank.control = r.control;
+    r = corrector_.solve(predictor_, start, bank, params_, params_.max_predictions - used, &out, &scratch_);
+    used += r.predictions;
+  }
+  r.predictions = used;
+  return r;
+}
+
+Prediction PredictorCorrectorPlanner::predict(const RelativeState& s, double sigma0_rad, double density_ratio,
+                                              ReferenceProfile* record, double sigmaf_rad, PredictionTrace* trace) {
+  BankProfile bank = bank_family();
+  bank.control = bank.control_for_bank(sigma0_rad);
+  if (sigmaf_rad >= 0.0) {
+    bank.sigma_glide_rad = sigmaf_rad;
+    bank.final_share = 0.0;
+  } else {
+    bank.sigma_glide_rad = final_bank_rad(density_ratio);
+  }
+  return predict_profile(s, bank, density_ratio, record, trace);
+}
+
+Prediction PredictorCorrectorPlanner::predict_profile(const RelativeState& s, BankProfile bank, double density_ratio,
+                                                      ReferenceProfile* record, PredictionTrace* trace) {
+  models_.aero().set_lift_scale(clamp(s.lift_over_drag_scale, params_.lod_ratio_min, params_.lod_ratio_max));
+  model_.set_density_ratio(density_ratio);
+  PredictionStart st;
+  st.x = point_mass_from(s);
+  st.sigma_flown_rad = s.bank_rad;
+  st.lateral.sign = sign_of(s.bank_rad);
+  st.captured = s.drag_mps2 >= capture_drag_mps2_;
+  bank.e0_Jpkg = energy_of(st.x);
+  bank.ef_Jpkg = taem_energy_;
+  bank.terminal_altitude_m = taem_altitude_;
+  return predictor_.run(st, bank, record, trace);
+}
+
+}  // namespace reentry::fsw
