@@ -183,6 +183,17 @@ EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Traje
     start = interpolate(pb, s.trajectory, mesh);
     if (ro.model_correction) bias = model_bias(pb, start);
   }
+  // IPOPT's acceptable point (its relaxed tolerances held for acceptable_iter iterations) is
+  // resumed once, warm, on the same mesh and model correction: Newton from there usually meets
+  // the full tolerances in a few iterations. Kept only if it does.
+  if (r.passes.back().status == SolveStatus::kAcceptable) {
+    const Solution s = solve(pb, mesh, r.solution.trajectory, warm(options.solver), bias.f.empty() ? nullptr : &bias);
+    if (s.status == SolveStatus::kOptimal) {
+      r.passes.push_back({mesh.segments(), s.status, s.iterations, s.wall_s,
+                          table_flight_end_error_m(pb, s.trajectory, ro.substeps), !bias.f.empty()});
+      r.solution = s;
+    }
+  }
   r.figures = evaluate_figures(pb, r.solution.trajectory);
   r.figures.regularisation = mode == EntryMode::kMaxMargin && r.solution.trajectory.p.size() == 2
                                  ? r.solution.objective - r.solution.trajectory.p[1]
