@@ -36,7 +36,7 @@ def law_line(m):
     if law == "drag_tracking":
         return ""
     return ('law = "%s"   # the guidance law of this mission (docs/guidance_design.md 10), the better one by\n'
-            '# the reference campaigns of both laws (docs/law_comparison.md)\n' % law)
+            '# the reference campaigns of both laws (docs/status.md, the two laws side by side)\n' % law)
 
 M = {
  "horus": dict(src="table 3.1 (Mooij 2010)", vehicle="horus", law="predictor_corrector", h=119.96, lon=-105.97, lat=-22.06, v=7438.1, g=-1.4263, chi=70.437,
