@@ -44,13 +44,20 @@ struct EntrySolveOptions {
   /// coupled to the margin outweigh the objective and push the margin the wrong way for tens of
   /// iterations). The max-min objective has many optima (every control history that keeps the
   /// binding constraints where they are): a small proximity term picks the one closest to the
-  /// start, which keeps the Hessian regular there.
+  /// start, and a small smoothing term (the integral of (du/dtau)^2 in control scales) the
+  /// smoothest of those near it. The proximity term alone leaves the Hessian nearly singular
+  /// along control histories that trade one reversal's timing against another's: IPOPT then
+  /// regularises every iteration and creeps to the optimum in tens of short steps. The smoothing
+  /// weight is small against the margin (a fraction of each limit; the value of both terms at
+  /// the solution is reported as its "regularisation") and large enough to give Newton a regular
+  /// Hessian along those directions.
   static SolverOptions default_solver() {
     SolverOptions s;
     s.exact_hessian = true;
     s.linear_controls = true;
     s.mu_init = 1e-5;
     s.control_proximity = 3e-2;
+    s.control_smoothing = 3e-5;
     s.constr_mult_init_max = 0.0;
     s.max_iterations = 500;
     s.max_wall_s = 60.0;
