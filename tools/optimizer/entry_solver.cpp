@@ -9,6 +9,8 @@ namespace reentry::optimal {
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Margins below this (a fraction of each limit) are polished without the smoothing term.
+constexpr double kPolishMargin = 0.01;
 
 // Index of the sample interval containing t (samples increasing in time).
 size_t interval(const std::vector<double>& t, double tq, size_t hint) {
@@ -197,12 +199,13 @@ EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Traje
   auto regularisation = [&](const Solution& s) {
     return mode == EntryMode::kMaxMargin && s.trajectory.p.size() == 2 ? s.objective - s.trajectory.p[1] : kNaN;
   };
-  // The smoothing term speeds Newton up but may cost margin; where the margin is not clearly
-  // larger than what the regularisation terms are worth (a sign the caller decides on), the
-  // solution is polished warm without it, on the same mesh and model correction.
+  // The smoothing term speeds Newton up but may cost margin; where the margin is near zero (a
+  // sign and an open-loop replay the caller decides on) or not clearly larger than what the
+  // regularisation terms are worth, the solution is polished warm without it, on the same mesh
+  // and model correction.
   const bool last_pass_kept = converged(r.passes.back().status) && r.passes.back().segments == r.segments();
   if (mode == EntryMode::kMaxMargin && options.solver.control_smoothing > 0.0 && last_pass_kept &&
-      -r.solution.trajectory.p[1] < regularisation(r.solution)) {
+      -r.solution.trajectory.p[1] < std::max(kPolishMargin, regularisation(r.solution))) {
     SolverOptions plain = warm(options.solver);
     plain.control_smoothing = 0.0;
     const Solution s = solve(pb, mesh, r.solution.trajectory, plain, bias.f.empty() ? nullptr : &bias);
