@@ -59,7 +59,7 @@ struct EntrySolveOptions {
     s.control_proximity = 3e-2;
     s.control_smoothing = 3e-5;
     s.constr_mult_init_max = 0.0;
-    s.max_iterations = 500;
+    s.max_iterations = 1500;  // bounded by max_wall_s too; far-downrange footprint homotopy steps need more than 500
     s.max_wall_s = 60.0;
     return s;
   }
