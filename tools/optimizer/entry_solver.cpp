@@ -185,17 +185,21 @@ EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Traje
     start = interpolate(pb, s.trajectory, mesh);
     if (ro.model_correction) bias = model_bias(pb, start);
   }
+  // A warm re-solve of the last pass's solution (the kept one once that pass converged) on its
+  // mesh and model correction, kept as a pass of its own when `keep` accepts its status.
+  auto resolve_warm = [&](const SolverOptions& o, bool (*keep)(SolveStatus)) {
+    if (!converged(r.passes.back().status)) return;
+    const Solution s = solve(pb, mesh, r.solution.trajectory, o, bias.f.empty() ? nullptr : &bias);
+    if (!keep(s.status)) return;
+    r.passes.push_back({mesh.segments(), s.status, s.iterations, s.wall_s,
+                        table_flight_end_error_m(pb, s.trajectory, ro.substeps), !bias.f.empty()});
+    r.solution = s;
+  };
   // IPOPT's acceptable point (its relaxed tolerances held for acceptable_iter iterations) is
   // resumed once, warm, on the same mesh and model correction: Newton from there usually meets
   // the full tolerances in a few iterations. Kept only if it does.
-  if (r.passes.back().status == SolveStatus::kAcceptable) {
-    const Solution s = solve(pb, mesh, r.solution.trajectory, warm(options.solver), bias.f.empty() ? nullptr : &bias);
-    if (s.status == SolveStatus::kOptimal) {
-      r.passes.push_back({mesh.segments(), s.status, s.iterations, s.wall_s,
-                          table_flight_end_error_m(pb, s.trajectory, ro.substeps), !bias.f.empty()});
-      r.solution = s;
-    }
-  }
+  if (r.passes.back().status == SolveStatus::kAcceptable)
+    resolve_warm(warm(options.solver), [](SolveStatus st) { return st == SolveStatus::kOptimal; });
   auto regularisation = [&](const Solution& s) {
     return mode == EntryMode::kMaxMargin && s.trajectory.p.size() == 2 ? s.objective - s.trajectory.p[1] : kNaN;
   };
@@ -203,17 +207,11 @@ EntryResult solve_entry(const truth::Simulator& sim, EntryMode mode, const Traje
   // sign and an open-loop replay the caller decides on) or not clearly larger than what the
   // regularisation terms are worth, the solution is polished warm without it, on the same mesh
   // and model correction.
-  const bool last_pass_kept = converged(r.passes.back().status) && r.passes.back().segments == r.segments();
-  if (mode == EntryMode::kMaxMargin && options.solver.control_smoothing > 0.0 && last_pass_kept &&
+  if (mode == EntryMode::kMaxMargin && options.solver.control_smoothing > 0.0 &&
       -r.solution.trajectory.p[1] < std::max(kPolishMargin, regularisation(r.solution))) {
     SolverOptions plain = warm(options.solver);
     plain.control_smoothing = 0.0;
-    const Solution s = solve(pb, mesh, r.solution.trajectory, plain, bias.f.empty() ? nullptr : &bias);
-    if (converged(s.status)) {
-      r.passes.push_back({mesh.segments(), s.status, s.iterations, s.wall_s,
-                          table_flight_end_error_m(pb, s.trajectory, ro.substeps), !bias.f.empty()});
-      r.solution = s;
-    }
+    resolve_warm(plain, converged);
   }
   r.figures = evaluate_figures(pb, r.solution.trajectory);
   r.figures.regularisation = regularisation(r.solution);
