@@ -97,7 +97,12 @@ resume)
   first=$!
   until [[ -s "$work/slurm/slurm/campaign.json" || $SECONDS -ge $deadline ]]; do sleep 0.2; done
   a="$(array_job 0)" || fail "no submission recorded"
-  until [[ "$(squeue -h -j "${a}_1" -o %T 2>/dev/null)" == RUNNING || $SECONDS -ge $deadline ]]; do sleep 0.2; done
+  # RUNNING in squeue means allocated, not flying: a cancel in the moment before slurmstepd
+  # has started the batch script can be lost, and the shard then flies to the end. reentry_mc
+  # prints its first progress line ("0/10 runs") once its signal handler is set and its workers
+  # fly, so the cancel waits for that line; the shard then stops and writes no records.
+  shard_log="$work/slurm/slurm/logs/shard_1_job_${a}.out"
+  until grep -qs " runs, " "$shard_log" || [[ $SECONDS -ge $deadline ]]; do sleep 0.05; done
   scancel "${a}_1" || fail "scancel ${a}_1"
   wait "$first"; rc=$?
   cat "$work/first.log"
