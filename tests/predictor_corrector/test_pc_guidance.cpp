@@ -46,7 +46,7 @@ void expect_on_the_tightest_limit(const char* name) {
   ASSERT_TRUE(r.ok) << r.error;
   auto models = std::make_unique<OnboardModels>();
   ASSERT_EQ(init_from_mission(*models, r.mission), Status::kOk);
-  const PcLimits lim = pc_limits_from(to_guidance_mission(r.mission).limits, 0.97);
+  const PcLimits lim = pc_limits_from(to_guidance_mission(r.mission).limits, 0.97, 0.0);
   for (double v : {7200.0, 6000.0, 4500.0, 3000.0, 1500.0}) {
     for (double alpha_deg : {15.0, 30.0, 40.0}) {
       EXPECT_NEAR(largest_limit_ratio(r.mission, *models, lim, v, alpha_deg * kDeg), 1.0, 1e-3)
@@ -69,9 +69,65 @@ TEST(PcConstraintDragLimit, HeatFluxLimitScalesWithTheSquareOfTheMargin) {
   heat_only.heat_flux_max_Wpm2 = to_guidance_mission(r.mission).limits.heat_flux_max_Wpm2;
   double cl = 0.0, cd = 0.0;
   models->aero().coefficients(40.0 * kDeg, 20.0, cl, cd);
-  const double d1 = constraint_drag_limit_mps2(*models, pc_limits_from(heat_only, 1.0), 6000.0, 40.0 * kDeg, cl, cd);
-  const double d2 = constraint_drag_limit_mps2(*models, pc_limits_from(heat_only, 0.8), 6000.0, 40.0 * kDeg, cl, cd);
+  const double d1 = constraint_drag_limit_mps2(*models, pc_limits_from(heat_only, 1.0, 0.0), 6000.0, 40.0 * kDeg, cl, cd);
+  const double d2 = constraint_drag_limit_mps2(*models, pc_limits_from(heat_only, 0.8, 0.0), 6000.0, 40.0 * kDeg, cl, cd);
   EXPECT_NEAR(d2 / d1, 0.64, 1e-9);
+}
+
+// The C_D S/m knowledge: every drag-form limit (q, q alpha, heat flux) lowers its drag limit by
+// the share u, so that a vehicle whose C_D S/m is u below the model's meets it at the drag sensed;
+// the load factor, sensed directly, does not move.
+TEST(PcConstraintDragLimit, DragUncertaintyLowersEveryDragFormLimitByItsShare) {
+  const auto r = config::load_mission("x38");
+  ASSERT_TRUE(r.ok) << r.error;
+  auto models = std::make_unique<OnboardModels>();
+  ASSERT_EQ(init_from_mission(*models, r.mission), Status::kOk);
+  const PathLimits all = to_guidance_mission(r.mission).limits;
+  double cl = 0.0, cd = 0.0;
+  models->aero().coefficients(30.0 * kDeg, 8.0, cl, cd);
+  auto only = [&](int which) {
+    PathLimits l;
+    if (which == 0) l.heat_flux_max_Wpm2 = all.heat_flux_max_Wpm2;
+    if (which == 1) l.dynamic_pressure_max_Pa = all.dynamic_pressure_max_Pa;
+    if (which == 2) l.q_alpha_max_Pa_rad = 300e3 / kDeg;
+    if (which == 3) l.load_factor_max_g = all.load_factor_max_g;
+    return l;
+  };
+  for (int which = 0; which < 4; ++which) {
+    const double d0 = constraint_drag_limit_mps2(*models, pc_limits_from(only(which), 0.97, 0.0), 2500.0, 30.0 * kDeg, cl, cd);
+    const double d1 = constraint_drag_limit_mps2(*models, pc_limits_from(only(which), 0.97, 0.1), 2500.0, 30.0 * kDeg, cl, cd);
+    ASSERT_TRUE(d0 > 0.0 && d0 < 1e299) << which;
+    EXPECT_NEAR(d1 / d0, which == 3 ? 1.0 : 0.9, 1e-12) << "limit " << which;
+  }
+}
+
+// The constraint bound's least altitude rate holds the drag on its limit: with the drag at the
+// limit, a descent at hdot_min through an exponential atmosphere (D ~ exp(-h / H) V^2) with the
+// point-mass speed equation V' = -D - g sin(gamma) leaves the drag constant (d ln D / dt = 0 by
+// the chain rule; without gravity's share the dive's drag grows by 2 g |hdot| / V^2 per second).
+TEST(PcConstraintBound, LeastAltitudeRateHoldsTheDragOnItsLimitInADive) {
+  PredictorCorrectorParams p;
+  for (double v : {1200.0, 2500.0, 6000.0}) {
+    BankLawInput in;
+    in.velocity_mps = v;
+    in.radius_m = kEarthRadius_m + 30e3;
+    in.flight_path_rad = -5.0 * kDeg;
+    in.drag_mps2 = 15.0;
+    in.lift_mps2 = 13.0;
+    in.drag_limit_mps2 = 15.0;
+    in.drag_limit_rate_ps = 0.0;
+    in.scale_height_m = 6500.0;
+    in.sigma_base_rad = 60.0 * kDeg;
+    const BankLawOutput out = bank_magnitude(in, p);
+    const double hdot = out.hdot_min_mps;
+    ASSERT_LT(hdot, 0.0) << v;
+    const double g = gravity_mps2(in.radius_m);
+    const double dt = 1e-4;
+    const double h1 = hdot * dt;
+    const double v1 = v + (-in.drag_mps2 - g * hdot / v) * dt;
+    const double d1 = in.drag_mps2 * std::exp(-h1 / in.scale_height_m) * (v1 / v) * (v1 / v);
+    EXPECT_NEAR(std::log(d1 / in.drag_mps2) / dt, 0.0, 1e-6) << "V " << v << " m/s, hdot_min " << hdot << " m/s";
+  }
 }
 
 }  // namespace

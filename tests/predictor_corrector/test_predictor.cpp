@@ -99,6 +99,30 @@ struct GlideCase {
   Predictor predictor;
 };
 
+// A ranging (negative) alpha shift stops at the alpha of maximum L/D: the X-38 model's, as its
+// vehicle file states it from the generator's 0.1 deg scan (25.0 deg at Mach 5.5 and 10, 25.1 at
+// Mach 20, 23.0 at Mach 3; the on-board table, bilinear on a 1 deg alpha grid, has its maximum
+// at a node: within 0.6 deg); a shift that stays above it, and a positive one, are flown as given.
+TEST(PcPointMass, RangingShiftStopsAtTheAlphaOfMaximumLiftOverDrag) {
+  auto setup = std::make_unique<GuidanceSetup>();
+  ASSERT_TRUE(make_guidance_setup(load("x38"), *setup).empty());
+  const double e0 = specific_energy_Jpkg(kEarthRadius_m + setup->mission.entry.altitude_m, setup->mission.entry.velocity_mps);
+  auto model = std::make_unique<PointMassModel>();
+  model->init(&setup->models, &setup->alpha_profile, e0, setup->mission.limits.alpha_max_rad);
+  const double e = 0.8 * e0;  // the profile's 40 deg, the shift in full above 0.5 e0
+  const double profile = model->profile_alpha_at(e);
+  ASSERT_NEAR(profile, 40.0 * kDeg, 1e-9);
+  const struct { double mach, alpha_ld_deg; } published[] = {{3.0, 23.0}, {5.5, 25.0}, {10.0, 25.0}, {20.0, 25.1}};
+  model->set_alpha_shift(-30.0 * kDeg, 0.5 * e0, 0.4 * e0);
+  for (const auto& p : published) {
+    EXPECT_NEAR(model->alpha_at(e, p.mach) / kDeg, p.alpha_ld_deg, 0.6) << "Mach " << p.mach;
+  }
+  model->set_alpha_shift(-5.0 * kDeg, 0.5 * e0, 0.4 * e0);
+  EXPECT_NEAR(model->alpha_at(e, 10.0), profile - 5.0 * kDeg, 1e-12);
+  model->set_alpha_shift(3.0 * kDeg, 0.5 * e0, 0.4 * e0);
+  EXPECT_NEAR(model->alpha_at(e, 10.0), profile + 3.0 * kDeg, 1e-12);
+}
+
 TEST(PcPredictor, EquilibriumGlideCoversTheAnalyticRange) {
   auto c = std::make_unique<GlideCase>();
   const double cl = 0.6, cd = 0.5, mass = 10000.0, area = 20.0, sigma = 30.0 * kDeg;

@@ -36,7 +36,7 @@ Status PredictorCorrectorCycle::init(const OnboardModels& models, const AlphaPro
   params_ = params;
   estimator_params_ = estimator_params;
   taem_ = mission.taem;
-  limits_ = pc_limits_from(mission.limits, params.constraint_margin);
+  limits_ = pc_limits_from(mission.limits, params.constraint_margin, params.drag_model_uncertainty);
   alpha_max_rad_ = mission.limits.alpha_max_rad;
   sigma_rate_max_radps_ = mission.limits.sigma_rate_max_radps;
   capture_drag_mps2_ = capture_drag_mps2;

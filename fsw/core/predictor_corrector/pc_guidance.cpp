@@ -40,12 +40,15 @@ bool pullout_exceeds(double drag, double lod, double hdot, double g_eff, double 
 
 }  // namespace
 
-PcLimits pc_limits_from(const PathLimits& l, double margin) {
+PcLimits pc_limits_from(const PathLimits& l, double margin, double drag_uncertainty) {
+  // For a sensed drag D the vehicle's q is D / (C_D S/m)_vehicle: with the on-board C_D S/m
+  // larger by the share u, q (and rho, so the heat flux as sqrt(rho)) is underestimated by it.
   PcLimits p;
   p.margin = margin;
-  p.heat_flux_max_Wpm2 = limited(l.heat_flux_max_Wpm2) ? margin * l.heat_flux_max_Wpm2 : 0.0;
-  p.q_max_Pa = limited(l.dynamic_pressure_max_Pa) ? margin * l.dynamic_pressure_max_Pa : 0.0;
-  p.q_alpha_max_Pa_rad = limited(l.q_alpha_max_Pa_rad) ? margin * l.q_alpha_max_Pa_rad : 0.0;
+  const double q_share = 1.0 - drag_uncertainty;
+  p.heat_flux_max_Wpm2 = limited(l.heat_flux_max_Wpm2) ? margin * std::sqrt(q_share) * l.heat_flux_max_Wpm2 : 0.0;
+  p.q_max_Pa = limited(l.dynamic_pressure_max_Pa) ? margin * q_share * l.dynamic_pressure_max_Pa : 0.0;
+  p.q_alpha_max_Pa_rad = limited(l.q_alpha_max_Pa_rad) ? margin * q_share * l.q_alpha_max_Pa_rad : 0.0;
   p.load_factor_max_mps2 = limited(l.load_factor_max_g) ? margin * l.load_factor_max_g * kG0_mps2 : 0.0;
   return p;
 }
@@ -176,8 +179,10 @@ BankLawOutput bank_magnitude(const BankLawInput& in, const PredictorCorrectorPar
   double sigma = clamp(std::acos(clamp(cos_sigma, -1.0, 1.0)), p.bank_min_rad, upper);
   // Constraint bound (Lu 2014's predictive bound on the descent, in drag form): the drag may
   // approach its limit no faster than d ln(D / D_lim)/dt <= ln(D_lim / D) / tau; with
-  // D ~ rho V^2, rho ~ exp(-h / H) and V' = -D this is a least altitude rate,
-  //   hdot_min = -H (ln(D_lim / D) / tau + 2 D / V + d ln(D_lim)/dt),
+  // D ~ rho V^2, rho ~ exp(-h / H) and V' = -D - g sin(gamma) = -D - g hdot / V (gravity along
+  // the path: a dive keeps its speed, and its q grows, at low speed the larger share) this is a
+  // least altitude rate,
+  //   hdot_min = -H (ln(D_lim / D) / tau + 2 D / V + d ln(D_lim)/dt) / (1 + 2 g H / V^2),
   // held by the altitude-rate law L cos(sigma) = need + k_c (hdot_min - hdot) when the vehicle
   // sinks faster (an upper bound on |sigma|; above the limit hdot_min > 0: a climb).
   const double lod = in.drag_mps2 > 1e-9 ? in.lift_mps2 / in.drag_mps2 : 0.0;
@@ -185,8 +190,9 @@ BankLawOutput bank_magnitude(const BankLawInput& in, const PredictorCorrectorPar
     // The horizon grows by the roll to wings level (a slow roll from a large bank lets the
     // vehicle sink for that long before the lift comes back).
     const double roll_s = in.sigma_rate_radps > 0.0 ? std::fabs(in.sigma_flown_rad) / in.sigma_rate_radps : 0.0;
+    const double dive_share = 2.0 * gravity_mps2(in.radius_m) * in.scale_height_m / (v * v);
     out.hdot_min_mps = -in.scale_height_m * (std::log(in.drag_limit_mps2 / in.drag_mps2) / (p.constraint_time_s + roll_s) +
-                                             2.0 * in.drag_mps2 / v + in.drag_limit_rate_ps);
+                                             2.0 * in.drag_mps2 / v + in.drag_limit_rate_ps) / (1.0 + dive_share);
     if (hdot < out.hdot_min_mps) {
       const double cos_bound = (need + p.constraint_gain_ps * (out.hdot_min_mps - hdot)) / in.lift_mps2;
       if (cos_bound > std::cos(sigma)) {

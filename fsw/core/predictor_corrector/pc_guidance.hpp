@@ -28,7 +28,12 @@ struct PcLimits {
   double load_factor_max_mps2 = 0.0;
   double margin = 0.97;
 };
-PcLimits pc_limits_from(const PathLimits& limits, double margin);
+/// The mission's limits times `margin`; the drag-form limits (q, q alpha, heat flux: the sensed
+/// drag turned into q or density through the on-board C_D S/m) also lowered so that their drag
+/// limit falls by the share `drag_uncertainty` the on-board C_D S/m may overstate the vehicle's
+/// (q-type limits times 1 - u, heat flux times sqrt(1 - u): q ~ sqrt(rho)). Load factor, sensed
+/// directly, keeps the margin alone.
+PcLimits pc_limits_from(const PathLimits& limits, double margin, double drag_uncertainty);
 
 /// Largest drag acceleration at which every limit holds within its margin at speed v, alpha and
 /// coefficients (cl, cd) of the present Mach; load factor as hypot(L, D) (>= the body-normal one).

@@ -69,6 +69,10 @@ struct PredictorCorrectorParams {
   double glide_position_factor = 2.0;
   // Path constraints: planned fraction of every limit (heat flux, load factor, q, q alpha).
   double constraint_margin = 0.97;
+  // Share by which the on-board C_D S/m may overstate the vehicle's (aero and mass knowledge):
+  // the q, q alpha and heat-flux limits, met through the sensed drag, lowered so that their drag
+  // limits fall by it (pc_limits_from).
+  double drag_model_uncertainty = 0.06;
   double capture_drag_fraction = 0.1;  // a shallow entry is captured from this share of the threshold drag
   double roll_lag_s = 1.0;         // pull-out guard: bank filter lag before the roll to wings level
   double pullout_glide_need = 0.5; // pull-out guard: the glide's sink is discounted fully from this need / g0
@@ -140,6 +144,7 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("damping_ratio", p.damping_ratio, U::kNone, 0.0, 5.0, "altitude-rate damping ratio zeta");
   v("glide_position_factor", p.glide_position_factor, U::kNone, 0.0, 100.0, "height term gain: k / factor (0: none)");
   v("constraint_margin", p.constraint_margin, U::kNone, 0.5, 1.0, "planned fraction of every path limit");
+  v("drag_model_uncertainty", p.drag_model_uncertainty, U::kNone, 0.0, 0.5, "share the on-board C_D S/m may overstate: drag-form limits lowered by it");
   v("capture_drag_fraction", p.capture_drag_fraction, U::kNone, 0.0, 1.0, "shallow-entry capture from this share of the threshold drag");
   v("roll_lag_s", p.roll_lag_s, U::kNone, 0.0, 10.0, "pull-out guard: lag before the roll to wings level [s]");
   v("pullout_glide_need", p.pullout_glide_need, U::kNone, 0.01, 1.0, "pull-out guard: glide sink discounted fully from this need / g0");

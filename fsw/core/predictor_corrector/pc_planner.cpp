@@ -41,7 +41,7 @@ Status PredictorCorrectorPlanner::init(const OnboardModels& models, const AlphaP
   model_.init(&models_, &alpha_profile_, entry_energy_, mission.limits.alpha_max_rad);
   lateral_.init(params_, t, mission.limits.sigma_rate_max_radps, entry_energy_, taem_energy_);
   PredictorConfig cfg;
-  cfg.limits = pc_limits_from(mission.limits, params.constraint_margin);
+  cfg.limits = pc_limits_from(mission.limits, params.constraint_margin, params.drag_model_uncertainty);
   cfg.capture_drag_mps2 = capture_drag_mps2;
   cfg.sigma_rate_max_radps = mission.limits.sigma_rate_max_radps;
   cfg.sigma_accel_max_radps2 = mission.limits.sigma_accel_max_radps2;
@@ -59,7 +59,7 @@ double PredictorCorrectorPlanner::taem_altitude_target() {
   // The altitude deepest inside the TAEM altitude and Mach bands at the TAEM energy where q and
   // q alpha at the TAEM alpha stay within their planned fraction (as the drag law's planner).
   const TaemTarget& t = mission_.taem;
-  const PcLimits lim = pc_limits_from(mission_.limits, params_.constraint_margin);
+  const PcLimits lim = pc_limits_from(mission_.limits, params_.constraint_margin, params_.drag_model_uncertainty);
   if (!(t.altitude_tol_m > 0.0)) return t.altitude_m;
   const double alpha = model_.alpha_at(taem_energy_);
   double best_h = t.altitude_m, best_depth = -1e300;
@@ -120,7 +120,7 @@ RelativeState PredictorCorrectorPlanner::entry_state() const {
   s.flight_path_rad = e.flight_path_rad;
   s.heading_rad = e.heading_rad;
   s.energy_Jpkg = specific_energy_Jpkg(s.radius_m, s.velocity_mps);
-  const AeroSample a = model_.aero(point_mass_from(s), model_.alpha_at(s.energy_Jpkg));
+  const AeroSample a = model_.aero_at(point_mass_from(s));
   s.drag_mps2 = a.drag_mps2 / model_.density_ratio();
   s.lift_mps2 = a.lift_mps2 / model_.density_ratio();
   return s;
@@ -137,8 +137,7 @@ PredictionStart PredictorCorrectorPlanner::start_from(const RelativeState& from,
   model_.set_density_ratio(1.0);
   model_.set_alpha_shift(have_last_ ? last_bank_.alpha_shift_rad() : 0.0,
                          taem_energy_ + params_.terminal_span_fraction * (entry_energy_ - taem_energy_), taem_energy_);
-  const double alpha_flown = from.alpha_rad > 0.0 ? from.alpha_rad : model_.alpha_at(energy_of(x));
-  const AeroSample a = model_.aero(x, alpha_flown);
+  const AeroSample a = from.alpha_rad > 0.0 ? model_.aero(x, from.alpha_rad) : model_.aero_at(x);
   density_ratio = 1.0;
   if (from.drag_mps2 >= 0.1 * capture_drag_mps2_ && a.drag_mps2 > 0.0) {
     density_ratio = clamp(from.drag_mps2 / a.drag_mps2, params_.drag_ratio_min, params_.drag_ratio_max);

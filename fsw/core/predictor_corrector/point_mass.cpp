@@ -27,6 +27,26 @@ void PointMassModel::init(const OnboardModels* models, const AlphaProfile* alpha
   density_ratio_ = 1.0;
   alpha_shift_rad_ = 0.0;
   alpha_modulation_rad_ = 0.0;
+  for (int j = 0; j < kLdMachSamples; ++j) {
+    const double mach = kLdMachMax * j / (kLdMachSamples - 1);
+    double best_lod = -1.0;
+    alpha_ld_rad_[j] = alpha_max_rad;
+    for (int i = 0; i <= kLdAlphaSteps; ++i) {
+      const double a = alpha_max_rad * i / kLdAlphaSteps;
+      double cl = 0.0, cd = 0.0;
+      models->aero().coefficients(a, mach, cl, cd);
+      if (cd > 0.0 && cl / cd > best_lod) {
+        best_lod = cl / cd;
+        alpha_ld_rad_[j] = a;
+      }
+    }
+  }
+}
+
+double PointMassModel::alpha_max_lift_over_drag_rad(double mach) const {
+  const double u = clamp(mach / kLdMachMax, 0.0, 1.0) * (kLdMachSamples - 1);
+  const int j = static_cast<int>(std::fmin(std::floor(u), kLdMachSamples - 2));
+  return alpha_ld_rad_[j] + (u - j) * (alpha_ld_rad_[j + 1] - alpha_ld_rad_[j]);
 }
 
 double PointMassModel::profile_alpha_at(double energy_Jpkg) const {
@@ -39,6 +59,22 @@ double PointMassModel::alpha_at(double energy_Jpkg) const {
   const double span = shift_e_full_Jpkg_ - shift_e_zero_Jpkg_;
   const double w = span > 0.0 ? clamp((energy_Jpkg - shift_e_zero_Jpkg_) / span, 0.0, 1.0) : 1.0;
   return clamp(a + w * alpha_shift_rad_, 0.0, alpha_max_rad_);
+}
+
+double PointMassModel::alpha_at(double energy_Jpkg, double mach) const {
+  const double shifted = alpha_at(energy_Jpkg);
+  if (!(alpha_shift_rad_ < 0.0)) return shifted;
+  const double profile = clamp(alpha_profile_->alpha_rad(energy_Jpkg / entry_energy_Jpkg_) + alpha_modulation_rad_, 0.0,
+                               alpha_max_rad_);
+  return std::fmax(shifted, std::fmin(profile, alpha_max_lift_over_drag_rad(mach)));
+}
+
+AeroSample PointMassModel::aero_at(const PointMassState& x) const { return aero_at(x, energy_of(x)); }
+
+AeroSample PointMassModel::aero_at(const PointMassState& x, double energy_Jpkg) const {
+  if (!(alpha_shift_rad_ < 0.0)) return aero(x, alpha_at(energy_Jpkg));
+  const double h = height_above_ellipsoid_m(x.radius_m, x.latitude_rad);
+  return aero(x, alpha_at(energy_Jpkg, x.velocity_mps / models_->atmosphere().speed_of_sound_mps(h)));
 }
 
 AeroSample PointMassModel::aero(const PointMassState& x, double alpha_rad) const {
@@ -67,7 +103,7 @@ void PointMassModel::derivatives(const PointMassState& x, double sigma_rad, Poin
   const double sg = std::sin(x.flight_path_rad), cg = std::cos(x.flight_path_rad);
   const double sp = std::sin(x.heading_rad), cp = std::cos(x.heading_rad);
   const double sl = std::sin(x.latitude_rad), cl = std::cos(x.latitude_rad);
-  const AeroSample a = aero(x, alpha_at(specific_energy_Jpkg(r, V)));
+  const AeroSample a = aero_at(x);
   if (aux != nullptr) *aux = a;
   const double g = gravity_mps2(r);
   const double w2r = w * w * r;

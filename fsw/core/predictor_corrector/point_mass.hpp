@@ -51,7 +51,9 @@ class PointMassModel {
   void set_density_ratio(double k) { density_ratio_ = k; }
   double density_ratio() const { return density_ratio_; }
   /// Alpha of the prediction: the profile's (within [0, alpha_max]) plus the shift, ramped
-  /// linearly from full at e_full to zero at e_zero (and below).
+  /// linearly from full at e_full to zero at e_zero (and below). A negative (ranging) shift
+  /// stops at the alpha of maximum L/D at the state's Mach (alpha_at(e, mach)): below it the
+  /// shift would lose L/D, not gain it, and raise q for the drag flown.
   void set_alpha_shift(double shift_rad, double e_full_Jpkg, double e_zero_Jpkg) {
     alpha_shift_rad_ = shift_rad;
     shift_e_full_Jpkg_ = e_full_Jpkg;
@@ -60,6 +62,13 @@ class PointMassModel {
   /// An offset on top (the reversal's lift modulation of one guidance step; 0 outside).
   void set_alpha_modulation(double offset_rad) { alpha_modulation_rad_ = offset_rad; }
   double alpha_at(double energy_Jpkg) const;
+  double alpha_at(double energy_Jpkg, double mach) const;
+  /// Air and aerodynamics of a state at its alpha of the prediction (alpha_at(e, Mach)).
+  AeroSample aero_at(const PointMassState& x) const;
+  /// The same with the energy of the alpha schedule given (a point sampled on an energy).
+  AeroSample aero_at(const PointMassState& x, double energy_Jpkg) const;
+  /// Alpha of maximum L/D at a Mach number (the start-up scan, linear in Mach between samples).
+  double alpha_max_lift_over_drag_rad(double mach) const;
   double profile_alpha_at(double energy_Jpkg) const;
   AeroSample aero(const PointMassState& x, double alpha_rad) const;
   /// State derivative at bank sigma (signed, > 0 turns right); aux, if given, gets the air.
@@ -81,6 +90,11 @@ class PointMassModel {
   double alpha_modulation_rad_ = 0.0;
   double shift_e_full_Jpkg_ = 0.0;
   double shift_e_zero_Jpkg_ = 0.0;
+  // Alpha of maximum L/D scanned at start-up on kLdMachSamples Mach numbers 0..kLdMachMax.
+  static constexpr int kLdMachSamples = 48;
+  static constexpr double kLdMachMax = 40.0;
+  static constexpr int kLdAlphaSteps = 400;  // scan of [0, alpha_max]
+  double alpha_ld_rad_[kLdMachSamples] = {};
 };
 
 /// E = V^2/2 - mu/r + mu/R_eq (7.8) of a state.

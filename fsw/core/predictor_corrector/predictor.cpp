@@ -40,8 +40,8 @@ class ProfileRecorder {
  private:
   void store(int k, const PointMassState& x, double e, double sigma_rad) {
     ReferenceProfile& p = *out_;
-    const double alpha = model_.alpha_at(e);
-    const AeroSample a = model_.aero(x, alpha);
+    const AeroSample a = model_.aero_at(x, e);
+    const double alpha = a.alpha_rad;
     p.energy_Jpkg[k] = e;
     p.e_norm[k] = e / model_.entry_energy_Jpkg();
     p.drag_mps2[k] = a.drag_mps2;
@@ -221,7 +221,7 @@ Prediction Predictor::run(const PredictionStart& start, const BankProfile& bank,
   if (trace != nullptr) trace->n = 0;
   pr.end = PredictionEnd::kTimeOut;
   for (int k = 0; k < params_->max_steps; ++k) {
-    const AeroSample a = model_->aero(x, model_->alpha_at(e));
+    const AeroSample a = model_->aero_at(x, e);
     note_air(a, x.velocity_mps, pr);
     if (!captured) {
       const double need = level_flight_lift_need_mps2(x.radius_m, x.velocity_mps * std::cos(x.flight_path_rad),
