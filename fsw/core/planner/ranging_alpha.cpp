@@ -7,17 +7,8 @@ void alpha_of_max_lift_over_drag(const OnboardModels& models, const EnergyGrid& 
   for (int k = 0; k < kPlannerGrid; ++k) {
     const double h = radius_m[k] - kEarthRadius_m;
     const double mach = models.mach(h, velocity_from_energy_mps(grid.energy_Jpkg[k], radius_m[k]));
-    double best_alpha = grid.alpha_profile_rad[k], best_lod = -1.0;
-    for (int i = 0; i <= scan_steps; ++i) {
-      const double a = alpha_max_rad * i / scan_steps;
-      double cl, cd;
-      models.aero().coefficients(a, mach, cl, cd);
-      if (cd > 0.0 && cl / cd > best_lod) {
-        best_lod = cl / cd;
-        best_alpha = a;
-      }
-    }
-    alpha_ld_rad[k] = best_alpha;
+    alpha_ld_rad[k] =
+        alpha_of_max_lift_over_drag_rad(models.aero(), mach, alpha_max_rad, scan_steps, grid.alpha_profile_rad[k]);
   }
 }
 

@@ -5,6 +5,7 @@
 // These are the pieces of that step; the blend search is in length_iteration.hpp.
 #pragma once
 
+#include "models/lift_over_drag.hpp"
 #include "models/onboard_models.hpp"
 #include "planner/planner_grid.hpp"
 

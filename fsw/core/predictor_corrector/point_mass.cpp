@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "models/lift_over_drag.hpp"
 #include "numerics/runge_kutta.hpp"
 
 namespace reentry::fsw {
@@ -29,17 +30,7 @@ void PointMassModel::init(const OnboardModels* models, const AlphaProfile* alpha
   alpha_modulation_rad_ = 0.0;
   for (int j = 0; j < kLdMachSamples; ++j) {
     const double mach = kLdMachMax * j / (kLdMachSamples - 1);
-    double best_lod = -1.0;
-    alpha_ld_rad_[j] = alpha_max_rad;
-    for (int i = 0; i <= kLdAlphaSteps; ++i) {
-      const double a = alpha_max_rad * i / kLdAlphaSteps;
-      double cl = 0.0, cd = 0.0;
-      models->aero().coefficients(a, mach, cl, cd);
-      if (cd > 0.0 && cl / cd > best_lod) {
-        best_lod = cl / cd;
-        alpha_ld_rad_[j] = a;
-      }
-    }
+    alpha_ld_rad_[j] = alpha_of_max_lift_over_drag_rad(models->aero(), mach, alpha_max_rad, kLdAlphaSteps, alpha_max_rad);
   }
 }
 
@@ -53,8 +44,12 @@ double PointMassModel::profile_alpha_at(double energy_Jpkg) const {
   return clamp(alpha_profile_->alpha_rad(energy_Jpkg / entry_energy_Jpkg_), 0.0, alpha_max_rad_);
 }
 
+double PointMassModel::scheduled_alpha_rad(double energy_Jpkg) const {
+  return alpha_profile_->alpha_rad(energy_Jpkg / entry_energy_Jpkg_) + alpha_modulation_rad_;
+}
+
 double PointMassModel::alpha_at(double energy_Jpkg) const {
-  const double a = alpha_profile_->alpha_rad(energy_Jpkg / entry_energy_Jpkg_) + alpha_modulation_rad_;
+  const double a = scheduled_alpha_rad(energy_Jpkg);
   if (alpha_shift_rad_ == 0.0) return clamp(a, 0.0, alpha_max_rad_);
   const double span = shift_e_full_Jpkg_ - shift_e_zero_Jpkg_;
   const double w = span > 0.0 ? clamp((energy_Jpkg - shift_e_zero_Jpkg_) / span, 0.0, 1.0) : 1.0;
@@ -64,31 +59,39 @@ double PointMassModel::alpha_at(double energy_Jpkg) const {
 double PointMassModel::alpha_at(double energy_Jpkg, double mach) const {
   const double shifted = alpha_at(energy_Jpkg);
   if (!(alpha_shift_rad_ < 0.0)) return shifted;
-  const double profile = clamp(alpha_profile_->alpha_rad(energy_Jpkg / entry_energy_Jpkg_) + alpha_modulation_rad_, 0.0,
-                               alpha_max_rad_);
+  const double profile = clamp(scheduled_alpha_rad(energy_Jpkg), 0.0, alpha_max_rad_);
   return std::fmax(shifted, std::fmin(profile, alpha_max_lift_over_drag_rad(mach)));
 }
 
 AeroSample PointMassModel::aero_at(const PointMassState& x) const { return aero_at(x, energy_of(x)); }
 
 AeroSample PointMassModel::aero_at(const PointMassState& x, double energy_Jpkg) const {
-  if (!(alpha_shift_rad_ < 0.0)) return aero(x, alpha_at(energy_Jpkg));
-  const double h = height_above_ellipsoid_m(x.radius_m, x.latitude_rad);
-  return aero(x, alpha_at(energy_Jpkg, x.velocity_mps / models_->atmosphere().speed_of_sound_mps(h)));
+  AeroSample a = air(x);
+  add_aero(x, alpha_shift_rad_ < 0.0 ? alpha_at(energy_Jpkg, a.mach) : alpha_at(energy_Jpkg), a);
+  return a;
 }
 
 AeroSample PointMassModel::aero(const PointMassState& x, double alpha_rad) const {
+  AeroSample a = air(x);
+  add_aero(x, alpha_rad, a);
+  return a;
+}
+
+AeroSample PointMassModel::air(const PointMassState& x) const {
   AeroSample a;
-  a.alpha_rad = alpha_rad;
   a.altitude_m = height_above_ellipsoid_m(x.radius_m, x.latitude_rad);
-  const OnboardAtmosphere& air = models_->atmosphere();
-  a.density_kgpm3 = density_ratio_ * air.density_kgpm3(a.altitude_m);
-  a.mach = x.velocity_mps / air.speed_of_sound_mps(a.altitude_m);
+  const OnboardAtmosphere& atmosphere = models_->atmosphere();
+  a.density_kgpm3 = density_ratio_ * atmosphere.density_kgpm3(a.altitude_m);
+  a.mach = x.velocity_mps / atmosphere.speed_of_sound_mps(a.altitude_m);
+  return a;
+}
+
+void PointMassModel::add_aero(const PointMassState& x, double alpha_rad, AeroSample& a) const {
+  a.alpha_rad = alpha_rad;
   models_->aero().coefficients(alpha_rad, a.mach, a.cl, a.cd);
   const double q_over_m = 0.5 * a.density_kgpm3 * x.velocity_mps * x.velocity_mps * models_->area_over_mass();
   a.drag_mps2 = q_over_m * a.cd;  // (D.1)
   a.lift_mps2 = q_over_m * a.cl;
-  return a;
 }
 
 void PointMassModel::derivatives(const PointMassState& x, double sigma_rad, PointMassState& dx, AeroSample* aux) const {

@@ -80,6 +80,13 @@ class PointMassModel {
   double entry_energy_Jpkg() const { return entry_energy_Jpkg_; }
 
  private:
+  /// The profile's alpha plus the modulation offset at an energy (unclamped, unshifted).
+  double scheduled_alpha_rad(double energy_Jpkg) const;
+  /// Altitude, density and Mach of a state (the air part of an AeroSample).
+  AeroSample air(const PointMassState& x) const;
+  /// Alpha, coefficients, drag and lift at alpha onto the air sample of the same state.
+  void add_aero(const PointMassState& x, double alpha_rad, AeroSample& a) const;
+
   const OnboardModels* models_ = nullptr;
   const AlphaProfile* alpha_profile_ = nullptr;
   double entry_energy_Jpkg_ = 1.0;
