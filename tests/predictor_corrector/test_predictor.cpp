@@ -4,6 +4,8 @@
 //     the prediction says;
 //   - an equilibrium glide over a non-rotating Earth with constant L/D and bank covers the
 //     analytic range s = (r/2)(L/D) cos(sigma) ln[(1 - V_f^2/(g r)) / (1 - V_0^2/(g r))];
+//   - a lower terminal aim flies a shorter flight (denser air, ds/dE = -1/D), and where the
+//     bank is out of reach late in the flight the plan takes the range with it;
 //   - the corrector reaches a reachable target (a root: the neighbouring sigma_0 straddle it)
 //     and, for targets out of reach, returns the bound that misses least (brute-force scan).
 #include <gtest/gtest.h>
@@ -188,10 +190,12 @@ TEST(PcPredictor, EquilibriumGlideCoversTheAnalyticRange) {
 struct CorrectorCase {
   std::unique_ptr<PredictorCorrectorPlanner> planner = std::make_unique<PredictorCorrectorPlanner>();
   std::unique_ptr<ReferenceProfile> out = std::make_unique<ReferenceProfile>();
+  PathLimits setup_limits;
   Status init(const config::Mission& m) {
     auto setup = std::make_unique<GuidanceSetup>();
     if (!make_guidance_setup(m, *setup).empty()) return Status::kInvalidInput;
     setup->pc_params.altitude_iterations = 0;
+    setup_limits = setup->mission.limits;
     return planner->init(setup->models, setup->alpha_profile, setup->mission, setup->pc_params,
                          setup->params.tracker.initial_descent_drag_mps2, PcPlanTiming{0, 0.1});
   }
@@ -265,6 +269,84 @@ TEST(PcCorrector, OutOfReachReturnsTheBoundThatMissesLeastAndSaysWhichWay) {
     }
     EXPECT_LE(std::fabs(d.miss_along_m), 1.02 * least);
   }
+}
+
+// A state late in the flight, inside the terminal phase (the terminal altitude law flies the
+// bank): on the arrival great circle `distance_m` before the aim point, heading along it.
+RelativeState late_state(const config::Mission& m, double distance_m, double altitude_m, double velocity_mps) {
+  const TrackPoint p = great_circle_point(m.taem.latitude_rad, m.taem.longitude_rad, m.entry.latitude_rad,
+                                          m.entry.longitude_rad, 0.0);
+  const double d = distance_m / kEarthRadius_m, lat1 = m.taem.latitude_rad, back = p.azimuth_rad;
+  RelativeState s;
+  s.latitude_rad = std::asin(std::sin(lat1) * std::cos(d) + std::cos(lat1) * std::sin(d) * std::cos(back));
+  s.longitude_rad = m.taem.longitude_rad + std::atan2(std::sin(back) * std::sin(d) * std::cos(lat1),
+                                                      std::cos(d) - std::sin(lat1) * std::sin(s.latitude_rad));
+  s.radius_m = surface_radius_m(s.latitude_rad) + altitude_m;
+  s.altitude_m = s.radius_m - kEarthRadius_m;
+  s.velocity_mps = velocity_mps;
+  s.flight_path_rad = -1.0 * kDeg;
+  s.heading_rad = great_circle(s.latitude_rad, s.longitude_rad, m.taem.latitude_rad, m.taem.longitude_rad).azimuth_rad;
+  s.energy_Jpkg = specific_energy_Jpkg(s.radius_m, s.velocity_mps);
+  s.drag_mps2 = 0.0;  // K = 1: the model's density
+  return s;
+}
+
+// The X-33 late in its flight (165 km before the aim point, 45 km, 2000 m/s), the family at the
+// glide's final bank.
+class PcLateTerminalPhase : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    m = load("x33");
+    ASSERT_EQ(c.init(m), Status::kOk);
+    s = late_state(m, 165e3, 45000.0, 2000.0);
+    bank = c.planner->bank_family();
+    bank.sigma_glide_rad = c.planner->final_bank_rad(1.0);
+  }
+  config::Mission m;
+  CorrectorCase c;
+  RelativeState s;
+  BankProfile bank;
+};
+
+// The terminal line's aim moves the range: a lower line flies denser air, more drag per unit
+// energy (ds/dE = -1/D), so the flight ends shorter (more still to go) and lower.
+TEST_F(PcLateTerminalPhase, ALowerTerminalAimFliesAShorterFlight) {
+  bank.control = 0.0;
+  Prediction p[3];
+  for (int i = 0; i < 3; ++i) {
+    bank.terminal_altitude_m = c.planner->taem_target_altitude_m() + 1000.0 * (i - 1);
+    p[i] = c.planner->predict_profile(s, bank, 1.0, nullptr);
+    ASSERT_TRUE(p[i].usable());
+  }
+  EXPECT_GT(p[0].along_m, p[1].along_m + 2000.0);
+  EXPECT_GT(p[1].along_m, p[2].along_m + 2000.0);
+  EXPECT_LT(p[0].altitude_m, p[2].altitude_m);
+}
+
+// There sigma_0 has lost the range (every member of the family at the target aim ends long, by a
+// brute-force scan): the plan takes the range with the terminal aim, below the target and within
+// the TAEM band, its path maxima within the planned limits, and misses less than the bank can.
+TEST_F(PcLateTerminalPhase, OutOfTheBanksReachTheTerminalAimTakesTheRange) {
+  double least = 1e300;
+  for (int i = 0; i <= 40; ++i) {
+    bank.control = bank.control_max() * i / 40;
+    const Prediction p = c.planner->predict_profile(s, bank, 1.0, nullptr);
+    ASSERT_TRUE(p.usable());
+    ASSERT_LT(p.along_m, 0.0) << bank.control;  // long whatever the bank
+    least = std::fmin(least, -p.along_m);
+  }
+  const Status st = c.planner->plan(s, *c.out);
+  const PcPlanDiagnostics& d = c.planner->diagnostics();
+  EXPECT_TRUE(st == Status::kRangeTooLong || st == Status::kOk) << to_string(st);
+  EXPECT_LT(std::fabs(d.miss_along_m), least - 2000.0) << "the bank's least miss " << least << " m";
+  EXPECT_LT(c.out->taem_altitude_m, c.planner->taem_target_altitude_m());
+  EXPECT_GE(c.out->taem_altitude_m, m.taem.altitude_m - m.taem.altitude_tol_m);
+  EXPECT_NEAR(d.final_altitude_m, m.taem.altitude_m, m.taem.altitude_tol_m);
+  const PcLimits lim = pc_limits_from(c.setup_limits, c.planner->params().constraint_margin,
+                                      c.planner->params().drag_model_uncertainty);
+  EXPECT_LE(d.best.q_max_Pa, lim.q_max_Pa);
+  EXPECT_LE(d.best.q_alpha_max_Pa_rad, lim.q_alpha_max_Pa_rad);
+  EXPECT_LE(d.best.heat_flux_max_Wpm2, lim.heat_flux_max_Wpm2);
 }
 
 }  // namespace

@@ -50,6 +50,14 @@ struct PredictorCorrectorParams {
   // the aim's offset is kept for the next plan.
   int altitude_iterations = 2;
   double altitude_tol_fraction = 0.2;
+  // Range by the terminal aim: when sigma_0 is out of reach (the bank bound still long or short,
+  // as late in the flight, where the terminal altitude law flies the bank), the terminal line's aim
+  // is the range control within the altitudes whose depth in the TAEM altitude and Mach bands is
+  // at least 1 - terminal_range_aim_fraction of the target's (a lower line flies denser air: more
+  // drag per unit energy, ds/dE = -1/D, a shorter range); secant on the aim, at most
+  // terminal_range_predictions more predictions per plan. 0: the aim stays on the target.
+  double terminal_range_aim_fraction = 0.6;
+  int terminal_range_predictions = 4;
   // Terminal altitude: over the last terminal_span_fraction of the entry-to-TAEM energy span the
   // bank blends (weight ramping in over terminal_ramp_fraction of that span) into the altitude-
   // rate law L cos(sigma) = need + k_t (hdot_line - hdot) onto the straight line in (E, h) from
@@ -136,6 +144,8 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("taem_altitude_samples", p.taem_altitude_samples, U::kNone, 1, 10000, "TAEM altitude-band scan samples");
   v("altitude_iterations", p.altitude_iterations, U::kNone, 0, 10, "terminal-aim corrections per plan");
   v("altitude_tol_fraction", p.altitude_tol_fraction, U::kNone, 0.0, 1.0, "terminal aim corrected beyond this share of the altitude tolerance");
+  v("terminal_range_aim_fraction", p.terminal_range_aim_fraction, U::kNone, 0.0, 1.0, "range by the terminal aim: share of the TAEM band depth it may give up (0: none)");
+  v("terminal_range_predictions", p.terminal_range_predictions, U::kNone, 0, 20, "range by the terminal aim: predictions per plan");
   v("terminal_span_fraction", p.terminal_span_fraction, U::kNone, 0.0, 1.0, "terminal altitude line: last share of the span");
   v("terminal_ramp_fraction", p.terminal_ramp_fraction, U::kNone, 0.01, 1.0, "terminal altitude line: ramp-in share of its span");
   v("terminal_gamma_min_deg", p.terminal_gamma_min_rad, U::kDeg, -45.0, 0.0, "terminal altitude line: steepest flight path");

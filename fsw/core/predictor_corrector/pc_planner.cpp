@@ -19,6 +19,15 @@ bool finite_state(const RelativeState& s) {
   return true;
 }
 
+/// A prediction's path maxima within the planned limits, or no worse than the reference's where
+/// that one already exceeds them (0: not constrained).
+bool within_planned_limits(const Prediction& pr, const Prediction& ref, const PcLimits& lim) {
+  const auto ok = [](double x, double x_ref, double limit) { return !(limit > 0.0) || x <= std::fmax(limit, x_ref); };
+  return ok(pr.q_max_Pa, ref.q_max_Pa, lim.q_max_Pa) && ok(pr.q_alpha_max_Pa_rad, ref.q_alpha_max_Pa_rad, lim.q_alpha_max_Pa_rad) &&
+         ok(pr.heat_flux_max_Wpm2, ref.heat_flux_max_Wpm2, lim.heat_flux_max_Wpm2) &&
+         ok(pr.aero_accel_max_mps2, ref.aero_accel_max_mps2, lim.load_factor_max_mps2);
+}
+
 }  // namespace
 
 Status PredictorCorrectorPlanner::init(const OnboardModels& models, const AlphaProfile& alpha_profile,
@@ -65,20 +74,34 @@ double PredictorCorrectorPlanner::taem_altitude_target() {
   double best_h = t.altitude_m, best_depth = -1e300;
   taem_aim_min_m_ = t.altitude_m + t.altitude_tol_m;
   const int n = params_.taem_altitude_samples;
-  for (int i = 0; i <= n; ++i) {
-    const double h = t.altitude_m - t.altitude_tol_m + 2.0 * t.altitude_tol_m * i / n;
+  const auto altitude = [&](int i) { return t.altitude_m - t.altitude_tol_m + 2.0 * t.altitude_tol_m * i / n; };
+  const auto within_q = [&](double h) {
     const double v = OnboardModels::taem_speed_mps(t.latitude_rad, taem_energy_, h);
-    if (!(v > 0.0)) continue;
     const double q = 0.5 * models_.atmosphere().density_kgpm3(h) * v * v;
-    if ((lim.q_max_Pa > 0.0 && q > lim.q_max_Pa) || (lim.q_alpha_max_Pa_rad > 0.0 && q * alpha > lim.q_alpha_max_Pa_rad)) {
-      continue;
-    }
+    return v > 0.0 && !(lim.q_max_Pa > 0.0 && q > lim.q_max_Pa) &&
+           !(lim.q_alpha_max_Pa_rad > 0.0 && q * alpha > lim.q_alpha_max_Pa_rad);
+  };
+  for (int i = 0; i <= n; ++i) {
+    const double h = altitude(i);
+    if (!within_q(h)) continue;
     taem_aim_min_m_ = std::fmin(taem_aim_min_m_, h);  // the lowest TAEM altitude within q and q alpha
     const double depth = models_.taem_band_depth(t, taem_energy_, h);
     if (depth > best_depth) {
       best_depth = depth;
       best_h = h;
     }
+  }
+  // The range aim's span: the altitudes (within q and q alpha) whose depth in the TAEM altitude and
+  // Mach bands is at least (1 - terminal_range_aim_fraction) of the deepest one's.
+  range_aim_lo_m_ = range_aim_hi_m_ = best_h;
+  for (int i = 0; i <= n && best_depth > 0.0 && params_.terminal_range_aim_fraction > 0.0; ++i) {
+    const double h = altitude(i);
+    if (!within_q(h) ||
+        models_.taem_band_depth(t, taem_energy_, h) < (1.0 - params_.terminal_range_aim_fraction) * best_depth) {
+      continue;
+    }
+    range_aim_lo_m_ = std::fmin(range_aim_lo_m_, h);
+    range_aim_hi_m_ = std::fmax(range_aim_hi_m_, h);
   }
   return best_h;
 }
@@ -238,7 +261,49 @@ CorrectorResult PredictorCorrectorPlanner::solve(const PredictionStart& start, B
     used += r.predictions;
   }
   r.predictions = used;
+  if (r.status == Status::kRangeTooLong || r.status == Status::kRangeTooShort) range_by_terminal_aim(start, bank, r, out);
   return r;
+}
+
+void PredictorCorrectorPlanner::range_by_terminal_aim(const PredictionStart& start, BankProfile& bank,
+                                                      CorrectorResult& r, ReferenceProfile& out) {
+  // sigma_0 out of reach: the terminal line's aim becomes the range control, within the range
+  // aim's span of the TAEM altitude and Mach bands (taem_altitude_target). Along-track to go
+  // falls as the aim rises (thinner air, less drag per unit energy: ds/dE = -1/D). Secant on the
+  // aim from the plan's aim; a prediction is kept when it misses less, its TAEM altitude lies
+  // within the span (widened by the altitude iteration's own dead band) and its path maxima
+  // within the planned limits (no worse than the bank bound's where that one exceeds them).
+  const double lo = range_aim_lo_m_, hi = range_aim_hi_m_, band = hi - lo;
+  if (!(hi > lo) || !r.best.usable()) return;
+  const double alt_slack = params_.altitude_tol_fraction * mission_.taem.altitude_tol_m;
+  const PcLimits lim = pc_limits_from(mission_.limits, params_.constraint_margin, params_.drag_model_uncertainty);
+  const Prediction bound = r.best;
+  double h0 = bank.terminal_altitude_m, z0 = r.best.along_m, best_h = h0;
+  double h1 = clamp(h0 + (z0 < 0.0 ? -0.25 : 0.25) * band, lo, hi);
+  for (int i = 0; i < params_.terminal_range_predictions && h1 != h0; ++i) {
+    bank.terminal_altitude_m = h1;
+    const Prediction pr = predictor_.run(start, bank, &scratch_);
+    ++r.predictions;
+    if (!pr.usable()) break;
+    if (std::fabs(pr.along_m) < std::fabs(r.best.along_m) && pr.altitude_m >= lo - alt_slack &&
+        pr.altitude_m <= hi + alt_slack && within_planned_limits(pr, bound, lim)) {
+      r.best = pr;
+      best_h = h1;
+      out = scratch_;
+    }
+    if (std::fabs(pr.along_m) <= params_.miss_tol_m) break;
+    const double slope = (pr.along_m - z0) / (h1 - h0);
+    const double h2 = slope < 0.0 && std::isfinite(slope) ? h1 - pr.along_m / slope
+                                                           : h1 + (pr.along_m < 0.0 ? -0.25 : 0.25) * band;
+    h0 = h1;
+    z0 = pr.along_m;
+    h1 = clamp(h2, lo, hi);
+  }
+  bank.terminal_altitude_m = best_h;
+  if (std::fabs(r.best.along_m) <= params_.miss_tol_m) {
+    r.status = Status::kOk;
+    r.converged = true;
+  }
 }
 
 Prediction PredictorCorrectorPlanner::predict(const RelativeState& s, double sigma0_rad, double density_ratio,
@@ -265,7 +330,7 @@ Prediction PredictorCorrectorPlanner::predict_profile(const RelativeState& s, Ba
   st.captured = s.drag_mps2 >= capture_drag_mps2_;
   bank.e0_Jpkg = energy_of(st.x);
   bank.ef_Jpkg = taem_energy_;
-  bank.terminal_altitude_m = taem_altitude_;
+  if (!(bank.terminal_altitude_m > 0.0)) bank.terminal_altitude_m = taem_altitude_;
   return predictor_.run(st, bank, record, trace);
 }
 

@@ -67,7 +67,8 @@ class PredictorCorrectorPlanner {
   /// `trace` if given; sigmaf_rad >= 0: that final bank, else the plan's rule.
   Prediction predict(const RelativeState& s, double sigma0_rad, double density_ratio, ReferenceProfile* record,
                      double sigmaf_rad = -1.0, PredictionTrace* trace = nullptr);
-  /// The same for any member of the plan's family (bank_family() with its control set).
+  /// The same for any member of the plan's family (bank_family() with its control set), its
+  /// terminal line aimed at bank.terminal_altitude_m (0: the target TAEM altitude).
   Prediction predict_profile(const RelativeState& s, BankProfile bank, double density_ratio, ReferenceProfile* record,
                              PredictionTrace* trace = nullptr);
   /// The plan's one-parameter family of bank and alpha profiles (BankProfile), control unset.
@@ -77,9 +78,12 @@ class PredictorCorrectorPlanner {
 
  private:
   PredictionStart start_from(const RelativeState& from, double& density_ratio);
-  double taem_altitude_target();  // also sets taem_aim_min_m_
+  double taem_altitude_target();  // also sets taem_aim_min_m_ and the range aim's span
   void fill(const CorrectorResult& r, const BankProfile& bank, ReferenceProfile& out) const;
   CorrectorResult solve(const PredictionStart& start, BankProfile& bank, ReferenceProfile& out);
+  /// sigma_0 out of reach (r kRangeTooLong / kRangeTooShort): the terminal aim as the range
+  /// control (params terminal_range_*); r, bank's aim and out take the best prediction.
+  void range_by_terminal_aim(const PredictionStart& start, BankProfile& bank, CorrectorResult& r, ReferenceProfile& out);
 
   OnboardModels models_;
   AlphaProfile alpha_profile_;
@@ -96,6 +100,8 @@ class PredictorCorrectorPlanner {
   double taem_energy_ = 0.0;
   double taem_altitude_ = 0.0;
   double taem_aim_min_m_ = 0.0;  // lowest TAEM altitude of the band within q and q alpha
+  double range_aim_lo_m_ = 0.0;  // span of the terminal aim as the range control (range_by_terminal_aim)
+  double range_aim_hi_m_ = 0.0;
   // The last plan's bank profile: its magnitude at the new start energy is the first guess.
   bool have_last_ = false;
   BankProfile last_bank_;
