@@ -287,12 +287,12 @@ RelativeState late_state(const config::Mission& m, double distance_m, double alt
   s.flight_path_rad = -1.0 * kDeg;
   s.heading_rad = great_circle(s.latitude_rad, s.longitude_rad, m.taem.latitude_rad, m.taem.longitude_rad).azimuth_rad;
   s.energy_Jpkg = specific_energy_Jpkg(s.radius_m, s.velocity_mps);
-  s.drag_mps2 = 0.0;  // K = 1: the model's density
+  s.drag_mps2 = 5.0;  // sensed: captured (the plan's K from it)
   return s;
 }
 
-// The X-33 late in its flight (165 km before the aim point, 45 km, 2000 m/s), the family at the
-// glide's final bank.
+// The X-33 late in its flight (165 km before the aim point, 45 km, 2000 m/s, captured), the family
+// at the glide's final bank.
 class PcLateTerminalPhase : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -327,16 +327,18 @@ TEST_F(PcLateTerminalPhase, ALowerTerminalAimFliesAShorterFlight) {
 // brute-force scan): the plan takes the range with the terminal aim, below the target and within
 // the TAEM band, its path maxima within the planned limits, and misses less than the bank can.
 TEST_F(PcLateTerminalPhase, OutOfTheBanksReachTheTerminalAimTakesTheRange) {
+  const Status st = c.planner->plan(s, *c.out);
+  const PcPlanDiagnostics& d = c.planner->diagnostics();
+  const double k = d.density_ratio;  // the plan's sensed density ratio, for the scan
+  bank.sigma_glide_rad = c.planner->final_bank_rad(k);
   double least = 1e300;
   for (int i = 0; i <= 40; ++i) {
     bank.control = bank.control_max() * i / 40;
-    const Prediction p = c.planner->predict_profile(s, bank, 1.0, nullptr);
+    const Prediction p = c.planner->predict_profile(s, bank, k, nullptr);
     ASSERT_TRUE(p.usable());
     ASSERT_LT(p.along_m, 0.0) << bank.control;  // long whatever the bank
     least = std::fmin(least, -p.along_m);
   }
-  const Status st = c.planner->plan(s, *c.out);
-  const PcPlanDiagnostics& d = c.planner->diagnostics();
   EXPECT_TRUE(st == Status::kRangeTooLong || st == Status::kOk) << to_string(st);
   EXPECT_LT(std::fabs(d.miss_along_m), least - 2000.0) << "the bank's least miss " << least << " m";
   EXPECT_LT(c.out->taem_altitude_m, c.planner->taem_target_altitude_m());

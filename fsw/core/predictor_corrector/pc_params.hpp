@@ -55,7 +55,8 @@ struct PredictorCorrectorParams {
   // is the range control within the altitudes whose depth in the TAEM altitude and Mach bands is
   // at least 1 - terminal_range_aim_fraction of the target's (a lower line flies denser air: more
   // drag per unit energy, ds/dE = -1/D, a shorter range); secant on the aim, at most
-  // terminal_range_predictions more predictions per plan. 0: the aim stays on the target.
+  // terminal_range_predictions more predictions per plan (after capture). 0: the aim stays on the
+  // target.
   double terminal_range_aim_fraction = 0.6;
   int terminal_range_predictions = 4;
   // Terminal altitude: over the last terminal_span_fraction of the entry-to-TAEM energy span the

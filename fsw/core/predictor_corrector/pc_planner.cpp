@@ -261,7 +261,11 @@ CorrectorResult PredictorCorrectorPlanner::solve(const PredictionStart& start, B
     used += r.predictions;
   }
   r.predictions = used;
-  if (r.status == Status::kRangeTooLong || r.status == Status::kRangeTooShort) range_by_terminal_aim(start, bank, r, out);
+  // Not before capture: the initial descent flies wings level, and the plan at capture replaces
+  // this one.
+  if (start.captured && (r.status == Status::kRangeTooLong || r.status == Status::kRangeTooShort)) {
+    range_by_terminal_aim(start, bank, r, out);
+  }
   return r;
 }
 
