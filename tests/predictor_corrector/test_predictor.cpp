@@ -274,18 +274,18 @@ TEST(PcCorrector, OutOfReachReturnsTheBoundThatMissesLeastAndSaysWhichWay) {
 // A state late in the flight, inside the terminal phase (the terminal altitude law flies the
 // bank): on the arrival great circle `distance_m` before the aim point, heading along it.
 RelativeState late_state(const config::Mission& m, double distance_m, double altitude_m, double velocity_mps) {
+  const double aim_to_entry_rad = great_circle(m.taem.latitude_rad, m.taem.longitude_rad, m.entry.latitude_rad,
+                                               m.entry.longitude_rad).arc_rad;
   const TrackPoint p = great_circle_point(m.taem.latitude_rad, m.taem.longitude_rad, m.entry.latitude_rad,
-                                          m.entry.longitude_rad, 0.0);
-  const double d = distance_m / kEarthRadius_m, lat1 = m.taem.latitude_rad, back = p.azimuth_rad;
+                                          m.entry.longitude_rad, distance_m / kEarthRadius_m / aim_to_entry_rad);
   RelativeState s;
-  s.latitude_rad = std::asin(std::sin(lat1) * std::cos(d) + std::cos(lat1) * std::sin(d) * std::cos(back));
-  s.longitude_rad = m.taem.longitude_rad + std::atan2(std::sin(back) * std::sin(d) * std::cos(lat1),
-                                                      std::cos(d) - std::sin(lat1) * std::sin(s.latitude_rad));
+  s.latitude_rad = p.lat_rad;
+  s.longitude_rad = p.lon_rad;
   s.radius_m = surface_radius_m(s.latitude_rad) + altitude_m;
   s.altitude_m = s.radius_m - kEarthRadius_m;
   s.velocity_mps = velocity_mps;
   s.flight_path_rad = -1.0 * kDeg;
-  s.heading_rad = great_circle(s.latitude_rad, s.longitude_rad, m.taem.latitude_rad, m.taem.longitude_rad).azimuth_rad;
+  s.heading_rad = wrap_pi(p.azimuth_rad + M_PI);  // along the circle, towards the aim point
   s.energy_Jpkg = specific_energy_Jpkg(s.radius_m, s.velocity_mps);
   s.drag_mps2 = 5.0;  // sensed: captured (the plan's K from it)
   return s;

@@ -49,8 +49,9 @@ Status PredictorCorrectorPlanner::init(const OnboardModels& models, const AlphaP
   if (!(entry_energy_ > taem_energy_)) return Status::kInvalidInput;
   model_.init(&models_, &alpha_profile_, entry_energy_, mission.limits.alpha_max_rad);
   lateral_.init(params_, t, mission.limits.sigma_rate_max_radps, entry_energy_, taem_energy_);
+  limits_ = pc_limits_from(mission.limits, params.constraint_margin, params.drag_model_uncertainty);
   PredictorConfig cfg;
-  cfg.limits = pc_limits_from(mission.limits, params.constraint_margin, params.drag_model_uncertainty);
+  cfg.limits = limits_;
   cfg.capture_drag_mps2 = capture_drag_mps2;
   cfg.sigma_rate_max_radps = mission.limits.sigma_rate_max_radps;
   cfg.sigma_accel_max_radps2 = mission.limits.sigma_accel_max_radps2;
@@ -68,7 +69,7 @@ double PredictorCorrectorPlanner::taem_altitude_target() {
   // The altitude deepest inside the TAEM altitude and Mach bands at the TAEM energy where q and
   // q alpha at the TAEM alpha stay within their planned fraction (as the drag law's planner).
   const TaemTarget& t = mission_.taem;
-  const PcLimits lim = pc_limits_from(mission_.limits, params_.constraint_margin, params_.drag_model_uncertainty);
+  const PcLimits& lim = limits_;
   if (!(t.altitude_tol_m > 0.0)) return t.altitude_m;
   const double alpha = model_.alpha_at(taem_energy_);
   double best_h = t.altitude_m, best_depth = -1e300;
@@ -280,25 +281,25 @@ void PredictorCorrectorPlanner::range_by_terminal_aim(const PredictionStart& sta
   const double lo = range_aim_lo_m_, hi = range_aim_hi_m_, band = hi - lo;
   if (!(hi > lo) || !r.best.usable()) return;
   const double alt_slack = params_.altitude_tol_fraction * mission_.taem.altitude_tol_m;
-  const PcLimits lim = pc_limits_from(mission_.limits, params_.constraint_margin, params_.drag_model_uncertainty);
   const Prediction bound = r.best;
+  // A fixed step of a quarter of the span towards a shorter (z < 0: long) or longer flight.
+  const auto step = [band](double z) { return (z < 0.0 ? -0.25 : 0.25) * band; };
   double h0 = bank.terminal_altitude_m, z0 = r.best.along_m, best_h = h0;
-  double h1 = clamp(h0 + (z0 < 0.0 ? -0.25 : 0.25) * band, lo, hi);
+  double h1 = clamp(h0 + step(z0), lo, hi);
   for (int i = 0; i < params_.terminal_range_predictions && h1 != h0; ++i) {
     bank.terminal_altitude_m = h1;
     const Prediction pr = predictor_.run(start, bank, &scratch_);
     ++r.predictions;
     if (!pr.usable()) break;
     if (std::fabs(pr.along_m) < std::fabs(r.best.along_m) && pr.altitude_m >= lo - alt_slack &&
-        pr.altitude_m <= hi + alt_slack && within_planned_limits(pr, bound, lim)) {
+        pr.altitude_m <= hi + alt_slack && within_planned_limits(pr, bound, limits_)) {
       r.best = pr;
       best_h = h1;
       out = scratch_;
     }
     if (std::fabs(pr.along_m) <= params_.miss_tol_m) break;
     const double slope = (pr.along_m - z0) / (h1 - h0);
-    const double h2 = slope < 0.0 && std::isfinite(slope) ? h1 - pr.along_m / slope
-                                                           : h1 + (pr.along_m < 0.0 ? -0.25 : 0.25) * band;
+    const double h2 = slope < 0.0 && std::isfinite(slope) ? h1 - pr.along_m / slope : h1 + step(pr.along_m);
     h0 = h1;
     z0 = pr.along_m;
     h1 = clamp(h2, lo, hi);

@@ -99,6 +99,7 @@ class PredictorCorrectorPlanner {
   double entry_energy_ = 0.0;
   double taem_energy_ = 0.0;
   double taem_altitude_ = 0.0;
+  PcLimits limits_;              // the mission's limits as the law plans them (pc_limits_from)
   double taem_aim_min_m_ = 0.0;  // lowest TAEM altitude of the band within q and q alpha
   double range_aim_lo_m_ = 0.0;  // span of the terminal aim as the range control (range_by_terminal_aim)
   double range_aim_hi_m_ = 0.0;
