@@ -14,4 +14,11 @@ inline double wrap_pi(double angle_rad) {
   return a;
 }
 
+/// The angle moved by whole turns to within pi of `reference` (unchanged when it already is),
+/// so that a path from the reference to it is continuous through +-pi.
+inline double unwrap_near(double angle_rad, double reference_rad) {
+  const double d = angle_rad - reference_rad;
+  return std::fabs(d) > M_PI ? reference_rad + wrap_pi(d) : angle_rad;
+}
+
 }  // namespace reentry::physics

@@ -321,7 +321,7 @@ void SimProcess::apply_command() {
   const auto& c = cmd_fifo_[use];
   if (have_applied_) {  // control-constraint check on the applied command rates
     rates_.alpha_rate_radps = std::max(rates_.alpha_rate_radps, std::fabs(c.alpha_rad - applied_alpha_) / dt_);
-    rates_.sigma_rate_radps = std::max(rates_.sigma_rate_radps, std::fabs(c.sigma_rad - applied_sigma_) / dt_);
+    rates_.sigma_rate_radps = std::max(rates_.sigma_rate_radps, std::fabs(reentry::physics::wrap_pi(c.sigma_rad - applied_sigma_)) / dt_);
   }
   applied_alpha_ = c.alpha_rad;
   applied_sigma_ = c.sigma_rad;

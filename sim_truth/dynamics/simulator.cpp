@@ -13,6 +13,7 @@
 #include "environment/gravity.hpp"
 #include "environment/wind.hpp"
 #include "numerics/root_finding.hpp"
+#include "physics/angles.hpp"
 #include "numerics/runge_kutta.hpp"
 #include "vehicle/aerodynamics.hpp"
 #include "vehicle/heating.hpp"
@@ -301,7 +302,7 @@ void Simulator::start_segment() {
   if (!ideal) attitude_at(t_s_, &alpha_now, &sigma_now);
   a.t0 = t_s_;
   a.alpha.x0 = alpha_now;
-  a.sigma.x0 = sigma_now;
+  a.sigma.x0 = physics::wrap_pi(sigma_now);
   a.alpha.ideal = a.sigma.ideal = ideal;
   a.alpha.tau = a.sigma.tau = settings_.attitude_time_constant_s;
   a.alpha.rate_max = settings_.alpha_rate_max_radps;
@@ -311,13 +312,15 @@ void Simulator::start_segment() {
 void Simulator::set_command(double alpha_rad, double sigma_rad) {
   start_segment();  // freeze the achieved attitude at the current time
   attitude_->alpha.cmd = alpha_rad;
-  attitude_->sigma.cmd = sigma_rad;
+  // The bank rolls the shorter way round: the command moved by whole turns to within pi of
+  // the bank now (the flight software's filter makes the same choice on its smaller steps).
+  attitude_->sigma.cmd = physics::unwrap_near(sigma_rad, attitude_->sigma.x0);
 }
 
 void Simulator::attitude_at(double t, double* alpha_rad, double* sigma_rad) const {
   const double dt = std::max(0.0, t - attitude_->t0);
   *alpha_rad = attitude_->alpha.value(dt);
-  *sigma_rad = attitude_->sigma.value(dt);
+  *sigma_rad = physics::wrap_pi(attitude_->sigma.value(dt));
 }
 
 double Simulator::next_attitude_breakpoint(double after_t) const {

@@ -17,6 +17,7 @@
 #include "dynamics/simulator.hpp"
 #include "environment/earth.hpp"
 #include "environment/wind.hpp"
+#include "physics/angles.hpp"
 #include "test_mission.hpp"
 
 using namespace reentry;
@@ -415,6 +416,30 @@ TEST(TruthDynamics, AttitudeLagRespectsRateLimitAndConverges) {
     prev = now;
   }
   EXPECT_NEAR(prev, 60.0 * kDeg, 1e-6);  // 12 s of ramp + many time constants later
+}
+
+TEST(TruthDynamics, BankCommandAcrossPiRollsTheShorterWay) {
+  // +170 deg -> -170 deg is a 20 deg roll through pi, not 340 deg through wings level: at the
+  // rate limit the bank stays past 170 deg all the way, and the referee's wrapped rate holds.
+  const config::Mission m = truth_test::x33_test_mission();
+  SimOverrides ov = simple_models();
+  ov.attitude = AttitudeChoice::kLag;
+  auto sim = make(m, ov);
+  sim->set_command(30.0 * kDeg, 170.0 * kDeg);
+  ASSERT_EQ(sim->advance_to(80.0), SimEvent::kNone);
+  ASSERT_NEAR(sim->sample().sigma_rad, 170.0 * kDeg, 1e-6);
+  sim->set_command(30.0 * kDeg, -170.0 * kDeg);
+  const double t0 = sim->time_s();
+  double prev = sim->sample().sigma_rad;
+  for (int k = 1; k <= 600; ++k) {
+    ASSERT_EQ(sim->advance_to(t0 + 0.1 * k), SimEvent::kNone);
+    const double now = sim->sample().sigma_rad;
+    EXPECT_GE(std::fabs(now), 170.0 * kDeg - 1e-9) << "t " << 0.1 * k;
+    EXPECT_LE(std::fabs(physics::wrap_pi(now - prev)), m.constraints.sigma_rate_max_radps * 0.1 * (1 + 1e-12));
+    EXPECT_LE(std::fabs(now), M_PI);
+    prev = now;
+  }
+  EXPECT_NEAR(prev, -170.0 * kDeg, 1e-6);  // 60 s: the 20 deg ramp and many time constants
 }
 
 TEST(Dispersions, MappingIsExplicitAndReproducible) {

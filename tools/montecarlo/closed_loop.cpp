@@ -11,6 +11,7 @@
 #include "dynamics/open_loop.hpp"
 #include "guidance/guidance_stack.hpp"
 #include "nav/relative_state.hpp"
+#include "physics/angles.hpp"
 #include "sim_messages.hpp"
 #include "transport/event_log.hpp"
 #include "transport/lcm_codec.hpp"
@@ -143,7 +144,7 @@ ClosedLoopResult run_closed_loop(const config::Mission& mission, std::uint64_t s
       if (out.emitted) {
         if (have_prev) {
           r.rates.alpha_rate_radps = std::max(r.rates.alpha_rate_radps, std::fabs(out.alpha_rad - alpha_prev) / dt);
-          r.rates.sigma_rate_radps = std::max(r.rates.sigma_rate_radps, std::fabs(out.sigma_rad - sigma_prev) / dt);
+          r.rates.sigma_rate_radps = std::max(r.rates.sigma_rate_radps, std::fabs(physics::wrap_pi(out.sigma_rad - sigma_prev)) / dt);
         }
         alpha_prev = out.alpha_rad;
         sigma_prev = out.sigma_rad;
