@@ -98,6 +98,7 @@ struct ReferenceProfile {
   double entry_energy_Jpkg = 0.0;              // normalisation energy
   double taem_energy_Jpkg = 0.0;
   double taem_altitude_m = 0.0;                // height above the ellipsoid the final drag is planned for
+  double reversal_hold_energy_Jpkg = 0.0;      // predictor-corrector: the bank side held above it (0: none)
   // Planner diagnostics
   double dc_mps2 = 0.0;
   double e1_Jpkg = 0.0;

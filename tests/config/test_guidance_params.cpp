@@ -59,10 +59,12 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
   // docs/guidance_design.md 3.1); HORUS plans on the model's C_D S/m (its heat-flux limit leaves
   // no room); the X-38's alpha band down to its L/D-max alpha and the bank it keeps to turn
   // (predictor-corrector, docs/guidance_design.md 10.2-10.3); HORUS and the X-38 keep the terminal
-  // aim on its target (their terminal limits and TAEM altitude leave no room). Nothing else.
+  // aim on its target (their terminal limits and TAEM altitude leave no room), and HORUS holds no
+  // bank side for range. Nothing else.
   const std::map<std::string, std::set<std::string>> exceptions = {
       {"orbiter", {"tracker.pullout_guard_every_descent"}},
-      {"horus", {"predictor_corrector.drag_model_uncertainty", "predictor_corrector.terminal_range_aim_fraction"}},
+      {"horus", {"predictor_corrector.drag_model_uncertainty", "predictor_corrector.terminal_range_aim_fraction",
+                 "predictor_corrector.reversal_hold_predictions"}},
       {"x38", {"predictor_corrector.alpha_band_deg", "predictor_corrector.lateral_bank_deg",
                "predictor_corrector.terminal_range_aim_fraction"}},
       {"x33", {}}};
@@ -82,6 +84,7 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
     EXPECT_NEAR(setup->pc_params.lateral_bank_rad, (name == "x38" ? 65.0 : 45.0) * M_PI / 180.0, 1e-15) << name;
     EXPECT_EQ(setup->pc_params.terminal_range_aim_fraction,
               name == "horus" || name == "x38" ? 0.0 : defaults.terminal_range_aim_fraction) << name;
+    EXPECT_EQ(setup->pc_params.reversal_hold_predictions, name == "horus" ? 0 : defaults.reversal_hold_predictions) << name;
   }
 }
 

@@ -351,5 +351,79 @@ TEST_F(PcLateTerminalPhase, OutOfTheBanksReachTheTerminalAimTakesTheRange) {
   EXPECT_LE(d.best.heat_flux_max_Wpm2, lim.heat_flux_max_Wpm2);
 }
 
+// The Orbiter captured early, 3550 km before the aim point at 7215 m/s and 68.5 km: closer than
+// any member of the family can end (the constraint bound, not the bank, holds it up), so every
+// flight along the line of sight ends long.
+class PcReversalHold : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    m = load("orbiter");
+    ASSERT_EQ(c.init(m), Status::kOk);
+    s = late_state(m, kDistance_m, 68500.0, 7215.0);
+    s.flight_path_rad = -0.2 * kDeg;
+    s.drag_mps2 = 5.2;  // the on-board model's drag there (density ratio 1)
+    s.bank_rad = 35.0 * kDeg;
+    bank = c.planner->bank_family();
+    bank.sigma_glide_rad = c.planner->final_bank_rad(1.0);
+    e_taem = c.planner->taem_energy_Jpkg();
+  }
+  static constexpr double kDistance_m = 3550e3;
+  config::Mission m;
+  CorrectorCase c;
+  RelativeState s;
+  BankProfile bank;
+  double e_taem = 0.0;
+};
+
+// Holding the bank's side turns the heading off the line of sight: the ground track grows
+// longer than the along-track progress, and the flight ends shorter along the line.
+TEST_F(PcReversalHold, HoldingTheSideTurnsTheTrackOffTheLineAndShortensTheRange) {
+  bank.control = bank.control_max();
+  const Prediction none = c.planner->predict_profile(s, bank, 1.0, nullptr);
+  bank.reversal_hold_Jpkg = s.energy_Jpkg - 0.3 * (s.energy_Jpkg - e_taem);
+  const Prediction hold = c.planner->predict_profile(s, bank, 1.0, nullptr);
+  ASSERT_TRUE(none.usable());
+  ASSERT_TRUE(hold.usable());
+  EXPECT_LT(none.along_m, 0.0);                    // long along the line of sight
+  EXPECT_GT(hold.along_m, none.along_m + 100e3);   // the hold ends 100+ km shorter
+  const double progress_none = kDistance_m - none.along_m, progress_hold = kDistance_m - hold.along_m;
+  EXPECT_LT(progress_hold, hold.range_flown_m - 50e3);  // the track turned off the line
+  EXPECT_NEAR(progress_none, none.range_flown_m, 0.02 * none.range_flown_m);
+}
+
+// The plan finds the hold: every member of the family without it ends long by a brute-force
+// scan; the replan recovers nine tenths of the least of those misses (along the line and across
+// it) with a hold energy between the TAEM energy and now, its TAEM heading within the
+// tolerance and its path maxima within the mission's limits or no worse than the family's.
+TEST_F(PcReversalHold, OutOfTheFamilysReachTheHoldTakesTheRange) {
+  // The replan from the same state starts from the first plan's hold (its miss is a step
+  // function of the hold at the lateral logic's reversals).
+  ASSERT_NE(c.planner->plan(s, *c.out), Status::kNonFinite);
+  const Status st = c.planner->plan(s, *c.out);
+  const PcPlanDiagnostics& d = c.planner->diagnostics();
+  const double k = d.density_ratio;
+  bank.sigma_glide_rad = c.planner->final_bank_rad(k);
+  double least = 1e300;
+  for (int i = 0; i <= 20; ++i) {
+    bank.control = bank.control_max() * i / 20;
+    const Prediction p = c.planner->predict_profile(s, bank, k, nullptr);
+    ASSERT_TRUE(p.usable());
+    ASSERT_LT(p.along_m, 0.0) << bank.control;  // long whatever the bank
+    least = std::fmin(least, -p.along_m);
+  }
+  EXPECT_GT(least, 100e3);
+  EXPECT_TRUE(st == Status::kOk || st == Status::kRangeTooLong) << to_string(st);
+  EXPECT_GT(c.out->reversal_hold_energy_Jpkg, e_taem);
+  EXPECT_LT(c.out->reversal_hold_energy_Jpkg, s.energy_Jpkg);
+  EXPECT_LT(std::hypot(d.miss_along_m, d.miss_cross_m), 0.1 * least);
+  EXPECT_LE(std::fabs(d.final_heading_err_rad), m.taem.heading_tol_rad);
+  bank.control = d.control;  // the plan's member without the hold
+  const Prediction family = c.planner->predict_profile(s, bank, k, nullptr);
+  const PcLimits lim = pc_limits_from(c.setup_limits, 1.0, c.planner->params().drag_model_uncertainty);
+  EXPECT_LE(d.best.q_max_Pa, std::fmax(lim.q_max_Pa, family.q_max_Pa));
+  EXPECT_LE(d.best.heat_flux_max_Wpm2, std::fmax(lim.heat_flux_max_Wpm2, family.heat_flux_max_Wpm2));
+  EXPECT_LE(d.best.aero_accel_max_mps2, std::fmax(lim.load_factor_max_mps2, family.aero_accel_max_mps2));
+}
+
 }  // namespace
 }  // namespace reentry::fsw

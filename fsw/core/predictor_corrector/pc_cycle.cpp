@@ -122,6 +122,7 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   li.drag_mps2 = s.drag_mps2;
   li.lift_mps2 = s.lift_mps2;
   li.sigma_flown_rad = in.sigma_flown_rad;
+  li.hold_side = profile_.reversal_hold_energy_Jpkg > 0.0 && s.energy_Jpkg > profile_.reversal_hold_energy_Jpkg;
   const BankLawOutput law = bank_magnitude(in, params_);
   const ArrivalGeometry g =
       lateral_.geometry(s.latitude_rad, s.longitude_rad, s.velocity_mps, s.flight_path_rad, s.lift_mps2, law.sigma_rad);

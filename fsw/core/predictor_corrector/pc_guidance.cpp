@@ -338,7 +338,7 @@ void PcLateral::decide_sign(PcLateralState& st, const PcLateralInput& in, const 
     }
     return;
   }
-  if (rolling) return;
+  if (rolling || in.hold_side) return;
   const double w = half_width_rad(in.energy_Jpkg);
   if (st.sign > 0 && err > w) st.sign = -1;  // right of the corridor while turning right: bank left
   else if (st.sign < 0 && err < -w) st.sign = 1;

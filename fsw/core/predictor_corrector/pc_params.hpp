@@ -59,6 +59,12 @@ struct PredictorCorrectorParams {
   // target.
   double terminal_range_aim_fraction = 0.6;
   int terminal_range_predictions = 4;
+  // Range by the reversal hold: still long after that (the constraint bound holds the vehicle
+  // up), the bank's side is held without corridor reversals down to an energy between the TAEM
+  // energy and now, so the turn carries the heading off the line of sight (a longer ground
+  // track); a march and regula falsi on that energy, at most reversal_hold_predictions more
+  // predictions per plan (after capture). 0: no hold.
+  int reversal_hold_predictions = 6;
   // Terminal altitude: over the last terminal_span_fraction of the entry-to-TAEM energy span the
   // bank blends (weight ramping in over terminal_ramp_fraction of that span) into the altitude-
   // rate law L cos(sigma) = need + k_t (hdot_line - hdot) onto the straight line in (E, h) from
@@ -147,6 +153,7 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("altitude_tol_fraction", p.altitude_tol_fraction, U::kNone, 0.0, 1.0, "terminal aim corrected beyond this share of the altitude tolerance");
   v("terminal_range_aim_fraction", p.terminal_range_aim_fraction, U::kNone, 0.0, 1.0, "range by the terminal aim: share of the TAEM band depth it may give up (0: none)");
   v("terminal_range_predictions", p.terminal_range_predictions, U::kNone, 0, 20, "range by the terminal aim: predictions per plan");
+  v("reversal_hold_predictions", p.reversal_hold_predictions, U::kNone, 0, 20, "range by the reversal hold: predictions per plan");
   v("terminal_span_fraction", p.terminal_span_fraction, U::kNone, 0.0, 1.0, "terminal altitude line: last share of the span");
   v("terminal_ramp_fraction", p.terminal_ramp_fraction, U::kNone, 0.01, 1.0, "terminal altitude line: ramp-in share of its span");
   v("terminal_gamma_min_deg", p.terminal_gamma_min_rad, U::kDeg, -45.0, 0.0, "terminal altitude line: steepest flight path");

@@ -50,6 +50,7 @@ Status PredictorCorrectorPlanner::init(const OnboardModels& models, const AlphaP
   model_.init(&models_, &alpha_profile_, entry_energy_, mission.limits.alpha_max_rad);
   lateral_.init(params_, t, mission.limits.sigma_rate_max_radps, entry_energy_, taem_energy_);
   limits_ = pc_limits_from(mission.limits, params.constraint_margin, params.drag_model_uncertainty);
+  limits_unmargined_ = pc_limits_from(mission.limits, 1.0, params.drag_model_uncertainty);
   PredictorConfig cfg;
   cfg.limits = limits_;
   cfg.capture_drag_mps2 = capture_drag_mps2;
@@ -61,6 +62,7 @@ Status PredictorCorrectorPlanner::init(const OnboardModels& models, const AlphaP
   const Status st = predictor_.init(&model_, &lateral_, &params_, cfg);
   if (st != Status::kOk) return st;
   have_last_ = false;
+  last_hold_Jpkg_ = 0.0;
   initialised_ = true;
   return Status::kOk;
 }
@@ -183,6 +185,7 @@ void PredictorCorrectorPlanner::fill(const CorrectorResult& r, const BankProfile
   out.entry_energy_Jpkg = entry_energy_;
   out.taem_energy_Jpkg = taem_energy_;
   out.taem_altitude_m = bank.terminal_altitude_m;  // the terminal line's aim (the cycle flies it)
+  out.reversal_hold_energy_Jpkg = bank.reversal_hold_Jpkg;
   out.dc_mps2 = 0.0;
   out.e1_Jpkg = 0.0;
   out.e2_Jpkg = 0.0;
@@ -222,6 +225,7 @@ Status PredictorCorrectorPlanner::plan(const RelativeState& from, ReferenceProfi
     last_bank_ = bank;
     have_last_ = true;
     terminal_offset_m_ = bank.terminal_altitude_m - taem_altitude_;
+    last_hold_Jpkg_ = bank.reversal_hold_Jpkg;
   } else {
     out.n_points = 0;
   }
@@ -262,12 +266,72 @@ CorrectorResult PredictorCorrectorPlanner::solve(const PredictionStart& start, B
     used += r.predictions;
   }
   r.predictions = used;
+  bank.control = r.control;  // the range controls below fly the member the corrector chose
   // Not before capture: the initial descent flies wings level, and the plan at capture replaces
   // this one.
   if (start.captured && (r.status == Status::kRangeTooLong || r.status == Status::kRangeTooShort)) {
     range_by_terminal_aim(start, bank, r, out);
   }
+  if (start.captured && r.status == Status::kRangeTooLong) range_by_reversal_hold(start, bank, r, out);
   return r;
+}
+
+void PredictorCorrectorPlanner::range_by_reversal_hold(const PredictionStart& start, BankProfile& bank,
+                                                       CorrectorResult& r, ReferenceProfile& out) {
+  // Still long at the family's range-long end (the constraint bound, not the bank, holds the
+  // vehicle up): the range goes into the ground track. The side flown is held, no corridor
+  // reversal, down to the energy E_h: the turn carries the heading off the line of sight and
+  // the along-track progress falls with that excursion; below E_h the lateral logic brings the
+  // vehicle back onto the arrival line. The miss is not monotonic in E_h (a long hold turns the
+  // track past the aim), so E_h marches down from now (first from the last plan's hold) in
+  // quarters of the span to the TAEM energy until a hold ends short, then regula falsi inside
+  // that bracket. The hold stops corridor reversals only: the final reversal and its correction
+  // still turn the vehicle onto the TAEM heading. A prediction is kept when its miss (along and
+  // across) is smaller, its TAEM heading no worse than the tolerance or the bound's, and its path
+  // maxima within the mission's limits (the planned margin is the cycle's to keep).
+  const double e_now = bank.e0_Jpkg;
+  const double e_lo = taem_energy_;
+  if (params_.reversal_hold_predictions <= 0 || !(e_now > e_lo) || !r.best.usable()) return;
+  const Prediction bound = r.best;
+  const double heading_ok = std::fmax(mission_.taem.heading_tol_rad, std::fabs(bound.heading_err_rad));
+  const double quarter = 0.25 * (e_now - e_lo);
+  double ea = e_now, za = bound.along_m;  // the long side of the bracket (z < 0)
+  double eb = e_lo, zb = 0.0;             // the short side, once found
+  bool bracket = false;
+  double best_hold = 0.0;
+  double e = last_hold_Jpkg_ > e_lo && last_hold_Jpkg_ < e_now ? last_hold_Jpkg_ : e_now - quarter;
+  for (int i = 0; i < params_.reversal_hold_predictions; ++i) {
+    bank.reversal_hold_Jpkg = e;
+    const Prediction pr = predictor_.run(start, bank, &scratch_);
+    ++r.predictions;
+    if (!pr.usable()) break;
+    if (std::hypot(pr.along_m, pr.cross_m) < std::hypot(r.best.along_m, r.best.cross_m) &&
+        std::fabs(pr.heading_err_rad) <= heading_ok && within_planned_limits(pr, bound, limits_unmargined_)) {
+      r.best = pr;
+      best_hold = e;
+      out = scratch_;
+    }
+    if (std::fabs(pr.along_m) <= params_.miss_tol_m) break;
+    if (pr.along_m < 0.0) {  // along-track to go: < 0 long
+      ea = e;
+      za = pr.along_m;
+    } else {
+      eb = e;
+      zb = pr.along_m;
+      bracket = true;
+    }
+    if (bracket) {
+      e = ea - za * (eb - ea) / (zb - za);
+    } else {
+      if (!(e > e_lo)) break;  // the longest hold is still long
+      e = std::fmax(e - quarter, e_lo);
+    }
+  }
+  bank.reversal_hold_Jpkg = best_hold;
+  if (std::fabs(r.best.along_m) <= params_.miss_tol_m) {
+    r.status = Status::kOk;
+    r.converged = true;
+  }
 }
 
 void PredictorCorrectorPlanner::range_by_terminal_aim(const PredictionStart& start, BankProfile& bank,

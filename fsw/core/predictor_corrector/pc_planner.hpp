@@ -84,6 +84,9 @@ class PredictorCorrectorPlanner {
   /// sigma_0 out of reach (r kRangeTooLong / kRangeTooShort): the terminal aim as the range
   /// control (params terminal_range_*); r, bank's aim and out take the best prediction.
   void range_by_terminal_aim(const PredictionStart& start, BankProfile& bank, CorrectorResult& r, ReferenceProfile& out);
+  /// Still long after that: the bank's side held without corridor reversals down to an energy
+  /// (params reversal_hold_predictions); r, bank's hold and out take the best prediction.
+  void range_by_reversal_hold(const PredictionStart& start, BankProfile& bank, CorrectorResult& r, ReferenceProfile& out);
 
   OnboardModels models_;
   AlphaProfile alpha_profile_;
@@ -100,12 +103,14 @@ class PredictorCorrectorPlanner {
   double taem_energy_ = 0.0;
   double taem_altitude_ = 0.0;
   PcLimits limits_;              // the mission's limits as the law plans them (pc_limits_from)
+  PcLimits limits_unmargined_;   // the same without the planned margin (the reversal hold's check)
   double taem_aim_min_m_ = 0.0;  // lowest TAEM altitude of the band within q and q alpha
   double range_aim_lo_m_ = 0.0;  // span of the terminal aim as the range control (range_by_terminal_aim)
   double range_aim_hi_m_ = 0.0;
   // The last plan's bank profile: its magnitude at the new start energy is the first guess.
   bool have_last_ = false;
   BankProfile last_bank_;
+  double last_hold_Jpkg_ = 0.0;     // the last plan's reversal hold (range_by_reversal_hold), 0: none
   double terminal_offset_m_ = 0.0;  // the terminal line's aim below the target, learnt from the TAEM altitude
   bool initialised_ = false;
   PcPlanDiagnostics diag_;

@@ -155,6 +155,7 @@ double Predictor::command(const PointMassState& x, const AeroSample& a, double e
   li.drag_mps2 = a.drag_mps2;
   li.lift_mps2 = a.lift_mps2;
   li.sigma_flown_rad = sigma_flown_rad;
+  li.hold_side = bank.reversal_hold_Jpkg > 0.0 && energy > bank.reversal_hold_Jpkg;
   const BankLawOutput law = bank_magnitude(in, *params_);
   const ArrivalGeometry g =
       lateral_->geometry(x.latitude_rad, x.longitude_rad, x.velocity_mps, x.flight_path_rad, a.lift_mps2, law.sigma_rad);
