@@ -56,13 +56,15 @@ TEST(GuidanceParams, DefaultsLieInTheirDocumentedRangesAndAreConsistent) {
 TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptions) {
   // The tunables set away from their defaults, each with its reason in the mission file: the
   // Orbiter's pull-out guard on every descent for its 2 deg/s bank rate (drag tracking,
-  // docs/guidance_design.md 3.1); HORUS plans on the model's C_D S/m (its heat-flux limit leaves
+  // docs/guidance_design.md 3.1) and, for the same rate, its wider heading corridor
+  // (predictor-corrector, 10.5); HORUS plans on the model's C_D S/m (its heat-flux limit leaves
   // no room); the X-38's alpha band down to its L/D-max alpha and the bank it keeps to turn
   // (predictor-corrector, docs/guidance_design.md 10.2-10.3); HORUS and the X-38 keep the terminal
   // aim on its target (their terminal limits and TAEM altitude leave no room), and HORUS holds no
   // bank side for range. Nothing else.
   const std::map<std::string, std::set<std::string>> exceptions = {
-      {"orbiter", {"tracker.pullout_guard_every_descent"}},
+      {"orbiter", {"tracker.pullout_guard_every_descent", "predictor_corrector.corridor_entry_deg",
+                   "predictor_corrector.corridor_taem_deg"}},
       {"horus", {"predictor_corrector.drag_model_uncertainty", "predictor_corrector.terminal_range_aim_fraction",
                  "predictor_corrector.reversal_hold_predictions"}},
       {"x38", {"predictor_corrector.alpha_band_deg", "predictor_corrector.lateral_bank_deg",
@@ -85,6 +87,10 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
     EXPECT_EQ(setup->pc_params.terminal_range_aim_fraction,
               name == "horus" || name == "x38" ? 0.0 : defaults.terminal_range_aim_fraction) << name;
     EXPECT_EQ(setup->pc_params.reversal_hold_predictions, name == "horus" ? 0 : defaults.reversal_hold_predictions) << name;
+    EXPECT_NEAR(setup->pc_params.corridor_entry_rad, name == "orbiter" ? 18.0 * M_PI / 180.0 : defaults.corridor_entry_rad,
+                1e-15) << name;
+    EXPECT_NEAR(setup->pc_params.corridor_taem_rad, name == "orbiter" ? 5.0 * M_PI / 180.0 : defaults.corridor_taem_rad,
+                1e-15) << name;
   }
 }
 
