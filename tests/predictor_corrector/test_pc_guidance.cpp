@@ -130,5 +130,66 @@ TEST(PcConstraintBound, LeastAltitudeRateHoldsTheDragOnItsLimitInADive) {
   }
 }
 
+// Heat relief of a reversal's lowered alpha, against the truth simulator's heat-flux models: on
+// the Orbiter (Betts's leading edge, heat flux rising as alpha falls) the alpha returned is the
+// lowest whose heat flux stays within the limit, or within the unmodulated alpha's where that
+// is above it; with the X-33's stagnation point (alpha-free, 3.5) the modulation is kept.
+class PcHeatRelief : public ::testing::Test {
+ protected:
+  void load_models(const char* name) {
+    const auto r = config::load_mission(name);
+    ASSERT_TRUE(r.ok) << r.error;
+    mission = r.mission;
+    models = std::make_unique<OnboardModels>();
+    ASSERT_EQ(init_from_mission(*models, mission), Status::kOk);
+    lim = pc_limits_from(to_guidance_mission(mission).limits, 0.97, 0.0);
+  }
+  double truth_heat(double rho, double alpha_rad) const {
+    return truth::heat_flux_Wpm2(mission.vehicle.heating_model, rho, kV_mps, alpha_rad, mission.vehicle.nose_radius_m);
+  }
+  // Density at which the truth's heat flux at alpha is `fraction` of the planned limit.
+  double density_for(double fraction, double alpha_rad) const {
+    const double per_sqrt_rho = truth_heat(1.0, alpha_rad);
+    return std::pow(fraction * lim.heat_flux_max_Wpm2 / per_sqrt_rho, 2);
+  }
+  static constexpr double kV_mps = 6200.0;
+  config::Mission mission;
+  std::unique_ptr<OnboardModels> models;
+  PcLimits lim;
+};
+
+TEST_F(PcHeatRelief, LowestAlphaWithinTheLimitOnTheLeadingEdge) {
+  load_models("orbiter");
+  const double alpha = 40.0 * kDeg, alpha_mod = 37.0 * kDeg;
+  const double rho = density_for(0.99, alpha);
+  ASSERT_GT(truth_heat(rho, alpha_mod), 1.01 * lim.heat_flux_max_Wpm2);  // the modulation alone exceeds it
+  const double a = heat_relief_alpha_rad(*models, alpha_mod, alpha, rho, kV_mps, lim);
+  EXPECT_GT(a, alpha_mod);
+  EXPECT_LT(a, alpha);
+  EXPECT_NEAR(truth_heat(rho, a) / lim.heat_flux_max_Wpm2, 1.0, 1e-3);
+}
+
+TEST_F(PcHeatRelief, AboveTheLimitAlreadyTheModulationAddsNoHeat) {
+  load_models("orbiter");
+  const double alpha = 40.0 * kDeg, alpha_mod = 37.0 * kDeg;
+  const double rho = density_for(1.02, alpha);
+  const double a = heat_relief_alpha_rad(*models, alpha_mod, alpha, rho, kV_mps, lim);
+  EXPECT_NEAR(a, alpha, 0.01 * kDeg);
+  EXPECT_LE(truth_heat(rho, a), truth_heat(rho, alpha) * (1.0 + 1e-4));
+}
+
+TEST_F(PcHeatRelief, WellBelowTheLimitTheModulationIsKept) {
+  load_models("orbiter");
+  const double rho = density_for(0.8, 40.0 * kDeg);
+  EXPECT_EQ(heat_relief_alpha_rad(*models, 37.0 * kDeg, 40.0 * kDeg, rho, kV_mps, lim), 37.0 * kDeg);
+}
+
+TEST_F(PcHeatRelief, AnAlphaFreeHeatFluxKeepsTheModulation) {
+  load_models("x33");
+  const double rho = density_for(1.05, 40.0 * kDeg);
+  EXPECT_DOUBLE_EQ(truth_heat(rho, 37.0 * kDeg), truth_heat(rho, 40.0 * kDeg));
+  EXPECT_EQ(heat_relief_alpha_rad(*models, 37.0 * kDeg, 40.0 * kDeg, rho, kV_mps, lim), 37.0 * kDeg);
+}
+
 }  // namespace
 }  // namespace reentry::fsw

@@ -131,12 +131,17 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   const int sign = lateral_state_.sign;
   out.sigma_rad = sign * std::fmax(law.sigma_rad, kMinBankMagnitude_rad);
   // While a reversal rolls the bank through wings level, alpha sheds the vertical lift in excess
-  // of the command's within the band.
+  // of the command's within the band, as far as the heat flux allows (density from the sensed
+  // drag, D = rho V^2 C_D S / 2m, D.1).
   const double alpha_min = std::fmax(alpha_profile_rad - params_.alpha_band_rad, 0.0);
   out.alpha_rad = lateral_state_.reversing
                       ? modulated_alpha_rad(models_.aero(), alpha_rad, mach, law.sigma_rad, in.sigma_flown_rad,
                                             sigma_rate_max_radps_, alpha_min, params_)
                       : alpha_rad;
+  if (lateral_state_.reversing && cd > 0.0) {
+    const double density = 2.0 * s.drag_mps2 / (s.velocity_mps * s.velocity_mps * cd * models_.area_over_mass());
+    out.alpha_rad = heat_relief_alpha_rad(models_, out.alpha_rad, alpha_rad, density, s.velocity_mps, limits_);
+  }
   // Load relief at the present q (sensed drag over the model's C_D at the alpha flown).
   if (cd > 0.0) out.alpha_rad = load_relief_alpha_rad(models_.aero(), out.alpha_rad, mach, s.drag_mps2 / cd, limits_, alpha_min);
   out.phase = sign * in.sigma_flown_rad < 0.0 ? Phase::kReversal : Phase::kTracking;

@@ -121,6 +121,20 @@ double modulated_alpha_rad(const OnboardAero& aero, double alpha_rad, double mac
   return hi;
 }
 
+double heat_relief_alpha_rad(const OnboardModels& models, double alpha_mod_rad, double alpha_rad, double density_kgpm3,
+                             double velocity_mps, const PcLimits& limits) {
+  if (!(limits.heat_flux_max_Wpm2 > 0.0) || !(alpha_mod_rad < alpha_rad) || !(density_kgpm3 > 0.0)) return alpha_mod_rad;
+  auto heat = [&](double a) { return models.heat_flux_Wpm2(density_kgpm3, velocity_mps, a); };
+  const double allowed = std::fmax(limits.heat_flux_max_Wpm2, heat(alpha_rad));
+  if (heat(alpha_mod_rad) <= allowed) return alpha_mod_rad;
+  double lo = alpha_mod_rad, hi = alpha_rad;
+  for (int i = 0; i < 12; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (heat(mid) > allowed ? lo : hi) = mid;
+  }
+  return hi;
+}
+
 bool capture_due(double drag_mps2, double lift_mps2, double hdot_mps, double need_mps2, double scale_height_m,
                  double threshold_mps2, const PredictorCorrectorParams& p) {
   if (drag_mps2 >= threshold_mps2) return true;

@@ -109,6 +109,13 @@ bool capture_due(double drag_mps2, double lift_mps2, double hdot_mps, double nee
 double load_relief_alpha_rad(const OnboardAero& aero, double alpha_rad, double mach, double q_s_over_m,
                              const PcLimits& limits, double alpha_min_rad);
 
+/// Heat relief of a modulated alpha: with a heat flux that rises as alpha falls (Betts's leading
+/// edge, q = C(alpha) sqrt(rho) V^c2), the lowest alpha' in [alpha_mod, alpha] whose heat flux
+/// stays within the planned limit, or within the unmodulated alpha's where that is already
+/// above it (bisection, C falling with alpha). An alpha-free model (Chapman, 3.5) returns alpha_mod.
+double heat_relief_alpha_rad(const OnboardModels& models, double alpha_mod_rad, double alpha_rad, double density_kgpm3,
+                             double velocity_mps, const PcLimits& limits);
+
 /// The altitude-rate damping gain k = 2 zeta sqrt(g_eff / H) at a lift need (g_eff at least a
 /// tenth of g0), and the gain k / glide_position_factor of the altitude term that pulls the
 /// vehicle onto its reference height (0 without).

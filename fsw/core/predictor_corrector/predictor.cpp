@@ -203,6 +203,23 @@ void Predictor::finish(const PointMassState& x, double e, double t, double range
   pr.altitude_m = height_above_ellipsoid_m(x.radius_m, x.latitude_rad);
 }
 
+double Predictor::step_alpha_rad(const AeroSample& a, double v_mps, double e, double sigma_cmd_rad, double sigma_mid_rad,
+                                 bool reversing) const {
+  // The roll's lift modulation over the step (the bank at mid-step), within the band, as far as
+  // the heat flux allows; then the load relief.
+  const double alpha_min = model_->profile_alpha_at(e) - params_->alpha_band_rad;
+  double alpha = a.alpha_rad;
+  if (reversing) {
+    alpha = modulated_alpha_rad(model_->models().aero(), a.alpha_rad, a.mach, std::fabs(sigma_cmd_rad), sigma_mid_rad,
+                                config_.sigma_rate_max_radps, alpha_min, *params_);
+    alpha = heat_relief_alpha_rad(model_->models(), alpha, a.alpha_rad, a.density_kgpm3, v_mps, config_.limits);
+  }
+  if (a.cd > 0.0) {
+    alpha = load_relief_alpha_rad(model_->models().aero(), alpha, a.mach, a.drag_mps2 / a.cd, config_.limits, alpha_min);
+  }
+  return alpha;
+}
+
 Prediction Predictor::run(const PredictionStart& start, const BankProfile& bank, ReferenceProfile* record,
                           PredictionTrace* trace) const {
   Prediction pr;
@@ -237,16 +254,7 @@ Prediction Predictor::run(const PredictionStart& start, const BankProfile& bank,
       else if (lateral.sign != sign && ++pr.reversals == 1) pr.first_reversal_energy_Jpkg = e;
     }
     const double s_a = filter.value(), s_b = filter.step(sigma_cmd);
-    // The roll's lift modulation over the step (the bank at mid-step), within the band.
-    const double alpha_min = model_->profile_alpha_at(e) - params_->alpha_band_rad;
-    double alpha_mod = lateral.reversing ? modulated_alpha_rad(model_->models().aero(), a.alpha_rad, a.mach,
-                                                               std::fabs(sigma_cmd), 0.5 * (s_a + s_b),
-                                                               config_.sigma_rate_max_radps, alpha_min, *params_)
-                                         : a.alpha_rad;
-    if (a.cd > 0.0) {
-      alpha_mod = load_relief_alpha_rad(model_->models().aero(), alpha_mod, a.mach, a.drag_mps2 / a.cd, config_.limits,
-                                        alpha_min);
-    }
+    const double alpha_mod = step_alpha_rad(a, x.velocity_mps, e, sigma_cmd, 0.5 * (s_a + s_b), lateral.reversing);
     model_->set_alpha_modulation(alpha_mod - a.alpha_rad);
     if (trace != nullptr && trace->n < PredictionTrace::kCapacity) {
       trace->t_s[trace->n] = t;

@@ -121,6 +121,9 @@ class Predictor {
   /// The signed bank command of one guidance step (the lateral state is updated).
   double command(const PointMassState& x, const AeroSample& a, double energy, const BankProfile& bank,
                  double sigma_flown_rad, PcLateralState& lateral) const;
+  /// Alpha of one step: the reversal's lift modulation with its heat relief, then load relief.
+  double step_alpha_rad(const AeroSample& a, double v_mps, double e, double sigma_cmd_rad, double sigma_mid_rad,
+                        bool reversing) const;
   void note_air(const AeroSample& a, double v_mps, Prediction& pr) const;
   bool step(const PointMassState& x, double e, double sigma_a, double sigma_b, double ef, PointMassState& xn,
             double& en, double& h) const;
