@@ -56,15 +56,16 @@ TEST(GuidanceParams, DefaultsLieInTheirDocumentedRangesAndAreConsistent) {
 TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptions) {
   // The tunables set away from their defaults, each with its reason in the mission file: the
   // Orbiter's pull-out guard on every descent for its 2 deg/s bank rate (drag tracking,
-  // docs/guidance_design.md 3.1) and, for the same rate, its wider heading corridor
-  // (predictor-corrector, 10.5); HORUS plans on the model's C_D S/m (its heat-flux limit leaves
-  // no room); the X-38's alpha band down to its L/D-max alpha and the bank it keeps to turn
-  // (predictor-corrector, docs/guidance_design.md 10.2-10.3); HORUS and the X-38 keep the terminal
+  // docs/guidance_design.md 3.1) and, for the same rate, its wider heading corridor and its
+  // reversal modulation on the long rolls only (predictor-corrector, 10.4-10.5); HORUS plans on
+  // the model's C_D S/m (its heat-flux limit leaves no room); the X-38's alpha band down to its
+  // L/D-max alpha and the bank it keeps to turn (predictor-corrector, docs/guidance_design.md
+  // 10.2-10.3); HORUS and the X-38 keep the terminal
   // aim on its target (their terminal limits and TAEM altitude leave no room), and HORUS holds no
   // bank side for range. Nothing else.
   const std::map<std::string, std::set<std::string>> exceptions = {
       {"orbiter", {"tracker.pullout_guard_every_descent", "predictor_corrector.corridor_entry_deg",
-                   "predictor_corrector.corridor_taem_deg"}},
+                   "predictor_corrector.corridor_taem_deg", "predictor_corrector.modulation_min_roll_s"}},
       {"horus", {"predictor_corrector.drag_model_uncertainty", "predictor_corrector.terminal_range_aim_fraction",
                  "predictor_corrector.reversal_hold_predictions"}},
       {"x38", {"predictor_corrector.alpha_band_deg", "predictor_corrector.lateral_bank_deg",
@@ -91,6 +92,7 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
                 1e-15) << name;
     EXPECT_NEAR(setup->pc_params.corridor_taem_rad, name == "orbiter" ? 5.0 * M_PI / 180.0 : defaults.corridor_taem_rad,
                 1e-15) << name;
+    EXPECT_EQ(setup->pc_params.modulation_min_roll_s, name == "orbiter" ? 50.0 : defaults.modulation_min_roll_s) << name;
   }
 }
 
