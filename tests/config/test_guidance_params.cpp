@@ -60,9 +60,8 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
   // reversal modulation on the long rolls only (predictor-corrector, 10.4-10.5); HORUS plans on
   // the model's C_D S/m (its heat-flux limit leaves no room); the X-38's alpha band down to its
   // L/D-max alpha and the bank it keeps to turn (predictor-corrector, docs/guidance_design.md
-  // 10.2-10.3); HORUS and the X-38 keep the terminal
-  // aim on its target (their terminal limits and TAEM altitude leave no room), and HORUS holds no
-  // bank side for range. Nothing else.
+  // 10.2-10.3); HORUS and the X-38 keep the terminal aim on its target (their terminal limits and
+  // TAEM altitude leave no room), and HORUS holds no bank side for range. Nothing else.
   const std::map<std::string, std::set<std::string>> exceptions = {
       {"orbiter", {"tracker.pullout_guard_every_descent", "predictor_corrector.corridor_entry_deg",
                    "predictor_corrector.corridor_taem_deg", "predictor_corrector.modulation_min_roll_s"}},

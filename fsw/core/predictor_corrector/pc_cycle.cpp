@@ -134,13 +134,13 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   // of the command's within the band, as far as the heat flux allows (density from the sensed
   // drag, D = rho V^2 C_D S / 2m, D.1).
   const double alpha_min = std::fmax(alpha_profile_rad - params_.alpha_band_rad, 0.0);
-  out.alpha_rad = lateral_state_.reversing
-                      ? modulated_alpha_rad(models_.aero(), alpha_rad, mach, law.sigma_rad, in.sigma_flown_rad,
-                                            sigma_rate_max_radps_, alpha_min, params_)
-                      : alpha_rad;
-  if (lateral_state_.reversing && cd > 0.0) {
-    const double density = 2.0 * s.drag_mps2 / (s.velocity_mps * s.velocity_mps * cd * models_.area_over_mass());
-    out.alpha_rad = heat_relief_alpha_rad(models_, out.alpha_rad, alpha_rad, density, s.velocity_mps, limits_);
+  if (lateral_state_.reversing) {
+    const double density =
+        cd > 0.0 ? 2.0 * s.drag_mps2 / (s.velocity_mps * s.velocity_mps * cd * models_.area_over_mass()) : 0.0;
+    out.alpha_rad = reversal_alpha_rad(models_, alpha_rad, mach, law.sigma_rad, in.sigma_flown_rad, sigma_rate_max_radps_,
+                                       alpha_min, density, s.velocity_mps, limits_, params_);
+  } else {
+    out.alpha_rad = alpha_rad;
   }
   // Load relief at the present q (sensed drag over the model's C_D at the alpha flown).
   if (cd > 0.0) out.alpha_rad = load_relief_alpha_rad(models_.aero(), out.alpha_rad, mach, s.drag_mps2 / cd, limits_, alpha_min);

@@ -124,7 +124,10 @@ double modulated_alpha_rad(const OnboardAero& aero, double alpha_rad, double mac
 double heat_relief_alpha_rad(const OnboardModels& models, double alpha_mod_rad, double alpha_rad, double density_kgpm3,
                              double velocity_mps, const PcLimits& limits) {
   if (!(limits.heat_flux_max_Wpm2 > 0.0) || !(alpha_mod_rad < alpha_rad) || !(density_kgpm3 > 0.0)) return alpha_mod_rad;
-  auto heat = [&](double a) { return models.heat_flux_Wpm2(density_kgpm3, velocity_mps, a); };
+  // q = C(alpha) sqrt(rho) V^c2 (3.6): only C varies along the bisection.
+  const double sqrt_rho = std::sqrt(density_kgpm3);
+  const double v_power = std::pow(velocity_mps, models.heat_flux_velocity_exponent());
+  auto heat = [&](double a) { return models.heat_flux_coefficient(a) * sqrt_rho * v_power; };
   const double allowed = std::fmax(limits.heat_flux_max_Wpm2, heat(alpha_rad));
   if (heat(alpha_mod_rad) <= allowed) return alpha_mod_rad;
   double lo = alpha_mod_rad, hi = alpha_rad;
@@ -133,6 +136,14 @@ double heat_relief_alpha_rad(const OnboardModels& models, double alpha_mod_rad, 
     (heat(mid) > allowed ? lo : hi) = mid;
   }
   return hi;
+}
+
+double reversal_alpha_rad(const OnboardModels& models, double alpha_rad, double mach, double sigma_cmd_mag_rad,
+                          double sigma_flown_rad, double sigma_rate_radps, double alpha_min_rad, double density_kgpm3,
+                          double velocity_mps, const PcLimits& limits, const PredictorCorrectorParams& p) {
+  const double alpha_mod = modulated_alpha_rad(models.aero(), alpha_rad, mach, sigma_cmd_mag_rad, sigma_flown_rad,
+                                               sigma_rate_radps, alpha_min_rad, p);
+  return heat_relief_alpha_rad(models, alpha_mod, alpha_rad, density_kgpm3, velocity_mps, limits);
 }
 
 bool capture_due(double drag_mps2, double lift_mps2, double hdot_mps, double need_mps2, double scale_height_m,

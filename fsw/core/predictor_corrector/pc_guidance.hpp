@@ -116,6 +116,12 @@ double load_relief_alpha_rad(const OnboardAero& aero, double alpha_rad, double m
 double heat_relief_alpha_rad(const OnboardModels& models, double alpha_mod_rad, double alpha_rad, double density_kgpm3,
                              double velocity_mps, const PcLimits& limits);
 
+/// Alpha while a reversal rolls: the lift modulation with its heat relief, one rule for the cycle
+/// (density from the sensed drag; 0 when unknown: no relief) and the prediction (its own density).
+double reversal_alpha_rad(const OnboardModels& models, double alpha_rad, double mach, double sigma_cmd_mag_rad,
+                          double sigma_flown_rad, double sigma_rate_radps, double alpha_min_rad, double density_kgpm3,
+                          double velocity_mps, const PcLimits& limits, const PredictorCorrectorParams& p);
+
 /// The altitude-rate damping gain k = 2 zeta sqrt(g_eff / H) at a lift need (g_eff at least a
 /// tenth of g0), and the gain k / glide_position_factor of the altitude term that pulls the
 /// vehicle onto its reference height (0 without).

@@ -210,9 +210,8 @@ double Predictor::step_alpha_rad(const AeroSample& a, double v_mps, double e, do
   const double alpha_min = model_->profile_alpha_at(e) - params_->alpha_band_rad;
   double alpha = a.alpha_rad;
   if (reversing) {
-    alpha = modulated_alpha_rad(model_->models().aero(), a.alpha_rad, a.mach, std::fabs(sigma_cmd_rad), sigma_mid_rad,
-                                config_.sigma_rate_max_radps, alpha_min, *params_);
-    alpha = heat_relief_alpha_rad(model_->models(), alpha, a.alpha_rad, a.density_kgpm3, v_mps, config_.limits);
+    alpha = reversal_alpha_rad(model_->models(), a.alpha_rad, a.mach, std::fabs(sigma_cmd_rad), sigma_mid_rad,
+                               config_.sigma_rate_max_radps, alpha_min, a.density_kgpm3, v_mps, config_.limits, *params_);
   }
   if (a.cd > 0.0) {
     alpha = load_relief_alpha_rad(model_->models().aero(), alpha, a.mach, a.drag_mps2 / a.cd, config_.limits, alpha_min);
