@@ -60,15 +60,16 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
   // reversal modulation on the long rolls only (predictor-corrector, 10.4-10.5); HORUS plans on
   // the model's C_D S/m (its heat-flux limit leaves no room); the X-38's alpha band down to its
   // L/D-max alpha and the bank it keeps to turn (predictor-corrector, docs/guidance_design.md
-  // 10.2-10.3); HORUS and the X-38 keep the terminal aim on its target (their terminal limits and
-  // TAEM altitude leave no room), and HORUS holds no bank side for range. Nothing else.
+  // 10.2-10.3) and its 3-sigma C_D S/m knowledge (its q limit in the terminal dive); HORUS and the
+  // X-38 keep the terminal aim on its target (their terminal limits and TAEM altitude leave no
+  // room), and HORUS holds no bank side for range. Nothing else.
   const std::map<std::string, std::set<std::string>> exceptions = {
       {"orbiter", {"tracker.pullout_guard_every_descent", "predictor_corrector.corridor_entry_deg",
                    "predictor_corrector.corridor_taem_deg", "predictor_corrector.modulation_min_roll_s"}},
       {"horus", {"predictor_corrector.drag_model_uncertainty", "predictor_corrector.terminal_range_aim_fraction",
                  "predictor_corrector.reversal_hold_predictions"}},
       {"x38", {"predictor_corrector.alpha_band_deg", "predictor_corrector.lateral_bank_deg",
-               "predictor_corrector.terminal_range_aim_fraction"}},
+               "predictor_corrector.terminal_range_aim_fraction", "predictor_corrector.drag_model_uncertainty"}},
       {"x33", {}}};
   for (const auto& [name, keys] : exceptions) {
     const auto r = reentry::config::load_mission(name.c_str());
@@ -81,7 +82,8 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
     EXPECT_EQ(setup->params.tracker.initial_descent_drag_mps2, 0.05 * 9.80665) << name;
     EXPECT_EQ(setup->params.tracker.pullout_guard_every_descent, name == "orbiter" ? 1 : 0) << name;
     const reentry::fsw::PredictorCorrectorParams defaults;
-    EXPECT_EQ(setup->pc_params.drag_model_uncertainty, name == "horus" ? 0.0 : defaults.drag_model_uncertainty) << name;
+    EXPECT_EQ(setup->pc_params.drag_model_uncertainty,
+              name == "horus" ? 0.0 : (name == "x38" ? 0.11 : defaults.drag_model_uncertainty)) << name;
     EXPECT_NEAR(setup->pc_params.alpha_band_rad, (name == "x38" ? 15.0 : 3.0) * M_PI / 180.0, 1e-15) << name;
     EXPECT_NEAR(setup->pc_params.lateral_bank_rad, (name == "x38" ? 65.0 : 45.0) * M_PI / 180.0, 1e-15) << name;
     EXPECT_EQ(setup->pc_params.terminal_range_aim_fraction,
