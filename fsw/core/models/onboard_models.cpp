@@ -313,8 +313,16 @@ double OnboardModels::heat_flux_coefficient(double alpha_rad) const {
   return qa * heat_constant_;
 }
 
+OnboardModels::HeatFluxFlow OnboardModels::heat_flux_flow(double density_kgpm3, double velocity_mps) const {
+  return {std::sqrt(density_kgpm3), std::pow(velocity_mps, heat_exponent_)};
+}
+
+double OnboardModels::heat_flux_Wpm2(const HeatFluxFlow& flow, double alpha_rad) const {
+  return heat_flux_coefficient(alpha_rad) * flow.sqrt_density * flow.velocity_power;  // (3.6)
+}
+
 double OnboardModels::heat_flux_Wpm2(double density_kgpm3, double velocity_mps, double alpha_rad) const {
-  return heat_flux_coefficient(alpha_rad) * std::sqrt(density_kgpm3) * std::pow(velocity_mps, heat_exponent_);  // (3.6)
+  return heat_flux_Wpm2(heat_flux_flow(density_kgpm3, velocity_mps), alpha_rad);
 }
 
 }  // namespace reentry::fsw

@@ -229,6 +229,14 @@ class OnboardModels {
   /// Heat flux of the vehicle's model, q = C(alpha) sqrt(rho) V^c2: Chapman stagnation point
   /// (3.5)/(3.6), c1/sqrt(RN) sqrt(rho/rho0) (V/Vc)^3, alpha-free; or Betts's leading edge.
   double heat_flux_Wpm2(double density_kgpm3, double velocity_mps, double alpha_rad) const;
+  /// The flow's factors sqrt(rho) and V^c2 of q = C(alpha) sqrt(rho) V^c2, for the heat flux at
+  /// many alphas in one flow (heat_flux_Wpm2 below).
+  struct HeatFluxFlow {
+    double sqrt_density = 0.0;
+    double velocity_power = 0.0;
+  };
+  HeatFluxFlow heat_flux_flow(double density_kgpm3, double velocity_mps) const;
+  double heat_flux_Wpm2(const HeatFluxFlow& flow, double alpha_rad) const;
   /// C(alpha) of q = C sqrt(rho) V^c2, SI (W/m^2 per sqrt(kg/m^3) (m/s)^c2).
   double heat_flux_coefficient(double alpha_rad) const;
   /// c2 of q = C sqrt(rho) V^c2.

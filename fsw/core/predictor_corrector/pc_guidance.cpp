@@ -125,9 +125,8 @@ double heat_relief_alpha_rad(const OnboardModels& models, double alpha_mod_rad, 
                              double velocity_mps, const PcLimits& limits) {
   if (!(limits.heat_flux_max_Wpm2 > 0.0) || !(alpha_mod_rad < alpha_rad) || !(density_kgpm3 > 0.0)) return alpha_mod_rad;
   // q = C(alpha) sqrt(rho) V^c2 (3.6): only C varies along the bisection.
-  const double sqrt_rho = std::sqrt(density_kgpm3);
-  const double v_power = std::pow(velocity_mps, models.heat_flux_velocity_exponent());
-  auto heat = [&](double a) { return models.heat_flux_coefficient(a) * sqrt_rho * v_power; };
+  const OnboardModels::HeatFluxFlow flow = models.heat_flux_flow(density_kgpm3, velocity_mps);
+  auto heat = [&](double a) { return models.heat_flux_Wpm2(flow, a); };
   const double allowed = std::fmax(limits.heat_flux_max_Wpm2, heat(alpha_rad));
   if (heat(alpha_mod_rad) <= allowed) return alpha_mod_rad;
   double lo = alpha_mod_rad, hi = alpha_rad;
