@@ -243,7 +243,8 @@ TEST(OnboardTrim, HorusNodesEqualTheTruthModelsTrim) {
 // ------------------------------------------------------------------ the aero tables at one Mach
 // OnboardAero::MachSlice (the Mach interval found once, alpha bracketed alone) must give the
 // general bilinear look-up bit for bit: the guidance commands are computed through both. The
-// reference is numerics::bilinear on the same arrays, called directly, and OnboardAero::cl/cd.
+// reference is numerics::bilinear on the same arrays, called directly, and OnboardAero::cl/cd;
+// OnboardAero::coefficients (both tables through one slice) is held to the same reference.
 namespace {
 using reentry::fsw::OnboardAero;
 
@@ -299,6 +300,10 @@ void expect_slice_equals_bilinear(const OnboardAero& aero, const RandomTable& t,
     ASSERT_EQ(bits(slice.cd(alpha)), bits(cd_general)) << alpha << " " << mach;
     ASSERT_EQ(bits(slice.cl(alpha)), bits(aero.cl(alpha, mach))) << alpha << " " << mach;
     ASSERT_EQ(bits(slice.cd(alpha)), bits(aero.cd(alpha, mach))) << alpha << " " << mach;
+    double cl_pair = 0.0, cd_pair = 0.0;  // both tables in one look-up
+    aero.coefficients(alpha, mach, cl_pair, cd_pair);
+    ASSERT_EQ(bits(cl_pair), bits(cl_general)) << alpha << " " << mach;
+    ASSERT_EQ(bits(cd_pair), bits(cd_general)) << alpha << " " << mach;
   };
   for (int k = 0; k < n; ++k) check(axis_query(rng, t.alpha, t.n_alpha));
   std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -219,6 +219,27 @@ TEST(MissionGeometry, GreatCirclePointLiesOnTheArc) {
   EXPECT_NEAR(mer.azimuth_rad, 0.0, 1e-9);
 }
 
+TEST(MissionGeometry, BothWaysAndArcAloneEqualTheGreatCircleBitForBit) {
+  // The lateral logics take the arc, the azimuth and the back azimuth from one call, and the
+  // predictor its range from the arc alone; each must be great_circle's value exactly (the
+  // reference is great_circle called both ways), on points over the whole sphere with
+  // longitudes beyond one turn, coincident points and points half a turn apart.
+  std::mt19937_64 rng(20261207);
+  std::uniform_real_distribution<double> lat(-0.5 * M_PI, 0.5 * M_PI), lon(-2.0 * M_PI, 4.0 * M_PI);
+  for (int k = 0; k < 20000; ++k) {
+    const double lat1 = lat(rng), lon1 = lon(rng);
+    const double lat2 = k % 50 == 0 ? lat1 : (k % 50 == 1 ? -lat1 : lat(rng));
+    const double lon2 = k % 50 == 0 ? lon1 : (k % 50 == 1 ? lon1 + M_PI : lon(rng));
+    const GreatCircle there = great_circle(lat1, lon1, lat2, lon2);
+    const GreatCircle back = great_circle(lat2, lon2, lat1, lon1);
+    const GreatCircleBothWays both = great_circle_both_ways(lat1, lon1, lat2, lon2);
+    ASSERT_EQ(both.arc_rad, there.arc_rad) << k;
+    ASSERT_EQ(both.azimuth_rad, there.azimuth_rad) << k;
+    ASSERT_EQ(both.back_azimuth_rad, back.azimuth_rad) << k;
+    ASSERT_EQ(great_circle_arc_rad(lat1, lon1, lat2, lon2), there.arc_rad) << k;
+  }
+}
+
 // ---------------------------------------------------------------- drag profile length
 TEST(DragProfile, AnalyticLengthMatchesQuadrature) {
   std::mt19937_64 rng(12345);

@@ -66,10 +66,7 @@ double specific_energy_Jpkg(double radius_m, double velocity_mps) {
   return 0.5 * velocity_mps * velocity_mps - kMuEarth_m3ps2 / radius_m + kMuEarth_m3ps2 / kEarthRadius_m;  // (7.8)
 }
 
-double surface_radius_m(double latitude_rad) {
-  const double s = std::sin(latitude_rad);
-  return kEarthRadius_m * (1.0 - kEarthFlattening * s * s);
-}
+double surface_radius_m(double latitude_rad) { return surface_radius_from_sine_m(std::sin(latitude_rad)); }
 
 double velocity_from_energy_mps(double energy_Jpkg, double radius_m) {
   const double v2 = 2.0 * (energy_Jpkg + kMuEarth_m3ps2 / radius_m - kMuEarth_m3ps2 / kEarthRadius_m);
@@ -172,8 +169,12 @@ double OnboardAero::interpolate(const double* table, double alpha_rad, double ma
 }
 
 void OnboardAero::coefficients(double alpha_rad, double mach, double& cl, double& cd) const {
-  cl = lift_scale_ * interpolate(cl_, alpha_rad, mach);
-  cd = interpolate(cd_, alpha_rad, mach);
+  // Both tables share the grid: the Mach interval and the alpha interval are found once (the
+  // slice's values are cl() and cd()'s bit for bit).
+  const MachSlice slice = at_mach(mach);
+  cl = slice.cl(alpha_rad);
+  cd = slice.cd(alpha_rad);
+  if (n_alpha_ >= 2) hint_alpha_ = slice.hint_alpha_;
 }
 double OnboardAero::cl(double alpha_rad, double mach) const { return lift_scale_ * interpolate(cl_, alpha_rad, mach); }
 double OnboardAero::cd(double alpha_rad, double mach) const { return interpolate(cd_, alpha_rad, mach); }

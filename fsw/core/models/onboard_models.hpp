@@ -26,6 +26,10 @@ inline constexpr double kEarthFlattening = physics::kEarthFlattening;
 /// stratification) are heights above it, while the on-board models work with r - R_eq: at
 /// 33 deg latitude the two differ by 6.4 km.
 double surface_radius_m(double latitude_rad);
+/// The same from sin(latitude) (a caller that has it already).
+inline double surface_radius_from_sine_m(double sin_latitude) {
+  return kEarthRadius_m * (1.0 - kEarthFlattening * sin_latitude * sin_latitude);
+}
 
 /// Central gravity g = mu / r^2.
 double gravity_mps2(double radius_m);

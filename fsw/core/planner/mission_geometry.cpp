@@ -4,20 +4,47 @@
 
 namespace reentry::fsw {
 
-GreatCircle great_circle(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad) {
-  // Co-latitudes c = 90 - lat1, a = 90 - lat2, B = lon2 - lon1 (fig. 7.1).
-  const double d_lon = lon2_rad - lon1_rad;
-  // (7.1) cos b = cos c cos a + sin c sin a cos B, evaluated in the haversine form for accuracy.
+namespace {
+
+// (7.1) cos b = cos c cos a + sin c sin a cos B (co-latitudes c = 90 - lat1, a = 90 - lat2,
+// B = lon2 - lon1, fig. 7.1), evaluated in the haversine form for accuracy.
+double haversine_arc_rad(double lat1_rad, double lat2_rad, double d_lon_rad, double cos_lat1, double cos_lat2) {
   const double s_lat = std::sin(0.5 * (lat2_rad - lat1_rad));
-  const double s_lon = std::sin(0.5 * d_lon);
-  double hav = s_lat * s_lat + std::cos(lat1_rad) * std::cos(lat2_rad) * s_lon * s_lon;
+  const double s_lon = std::sin(0.5 * d_lon_rad);
+  double hav = s_lat * s_lat + cos_lat1 * cos_lat2 * s_lon * s_lon;
   hav = hav < 0.0 ? 0.0 : (hav > 1.0 ? 1.0 : hav);
+  return 2.0 * std::asin(std::sqrt(hav));
+}
+
+// (7.2) cos A = (cos a - cos b cos c) / (sin b sin c), quadrant from sin A = sin B sin a / sin b:
+// the azimuth at point 1 towards point 2, d_lon = lon2 - lon1.
+double initial_azimuth_rad(double d_lon_rad, double sin_lat1, double cos_lat1, double sin_lat2, double cos_lat2) {
+  return std::atan2(std::sin(d_lon_rad) * cos_lat2, cos_lat1 * sin_lat2 - sin_lat1 * cos_lat2 * std::cos(d_lon_rad));
+}
+
+}  // namespace
+
+GreatCircle great_circle(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad) {
+  const double d_lon = lon2_rad - lon1_rad;
+  const double c1 = std::cos(lat1_rad), c2 = std::cos(lat2_rad);
   GreatCircle g;
-  g.arc_rad = 2.0 * std::asin(std::sqrt(hav));
-  // (7.2) cos A = (cos a - cos b cos c) / (sin b sin c), quadrant from sin A = sin B sin a / sin b.
-  g.azimuth_rad = std::atan2(std::sin(d_lon) * std::cos(lat2_rad),
-                             std::cos(lat1_rad) * std::sin(lat2_rad) - std::sin(lat1_rad) * std::cos(lat2_rad) * std::cos(d_lon));
+  g.arc_rad = haversine_arc_rad(lat1_rad, lat2_rad, d_lon, c1, c2);
+  g.azimuth_rad = initial_azimuth_rad(d_lon, std::sin(lat1_rad), c1, std::sin(lat2_rad), c2);
   return g;
+}
+
+GreatCircleBothWays great_circle_both_ways(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad) {
+  const double s1 = std::sin(lat1_rad), c1 = std::cos(lat1_rad), s2 = std::sin(lat2_rad), c2 = std::cos(lat2_rad);
+  const double d_lon = lon2_rad - lon1_rad;
+  GreatCircleBothWays g;
+  g.arc_rad = haversine_arc_rad(lat1_rad, lat2_rad, d_lon, c1, c2);
+  g.azimuth_rad = initial_azimuth_rad(d_lon, s1, c1, s2, c2);
+  g.back_azimuth_rad = initial_azimuth_rad(lon1_rad - lon2_rad, s2, c2, s1, c1);
+  return g;
+}
+
+double great_circle_arc_rad(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad) {
+  return haversine_arc_rad(lat1_rad, lat2_rad, lon2_rad - lon1_rad, std::cos(lat1_rad), std::cos(lat2_rad));
 }
 
 TrackPoint great_circle_point(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad, double fraction) {

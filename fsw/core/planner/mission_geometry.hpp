@@ -13,6 +13,19 @@ struct GreatCircle {
 };
 GreatCircle great_circle(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad);
 
+/// great_circle(1 -> 2) and the azimuth back at point 2 towards point 1
+/// (great_circle(2 -> 1).azimuth_rad), bit for bit, from one set of the latitudes' sines and
+/// cosines.
+struct GreatCircleBothWays {
+  double arc_rad = 0.0;
+  double azimuth_rad = 0.0;
+  double back_azimuth_rad = 0.0;
+};
+GreatCircleBothWays great_circle_both_ways(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad);
+
+/// great_circle(...).arc_rad alone (bit for bit).
+double great_circle_arc_rad(double lat1_rad, double lon1_rad, double lat2_rad, double lon2_rad);
+
 /// Point at fraction f in [0, 1] of the great circle from point 1 to point 2 (spherical
 /// linear interpolation) and the azimuth of the circle there, radians.
 struct TrackPoint {

@@ -263,14 +263,12 @@ ArrivalGeometry PcLateral::geometry(double latitude_rad, double longitude_rad, d
   // R_turn = V^2 cos(gamma) / (L sin|sigma|).
   const PredictorCorrectorParams& p = *params_;
   ArrivalGeometry g;
-  const GreatCircle to_aim = great_circle(latitude_rad, longitude_rad, taem_.latitude_rad, taem_.longitude_rad);
+  const GreatCircleBothWays to_aim =
+      great_circle_both_ways(latitude_rad, longitude_rad, taem_.latitude_rad, taem_.longitude_rad);
   const double b = to_aim.arc_rad;
   g.range_m = kEarthRadius_m * b;
   double eps = 0.0;
-  if (g.range_m > p.aim_min_range_m) {
-    const double back = great_circle(taem_.latitude_rad, taem_.longitude_rad, latitude_rad, longitude_rad).azimuth_rad;
-    eps = wrap_pi(back - (taem_.heading_rad + M_PI));
-  }
+  if (g.range_m > p.aim_min_range_m) eps = wrap_pi(to_aim.back_azimuth_rad - (taem_.heading_rad + M_PI));
   const double sb = std::sin(b);
   g.along_m = kEarthRadius_m * std::atan2(sb * std::cos(eps), std::cos(b));
   g.cross_m = kEarthRadius_m * std::asin(clamp(sb * std::sin(eps), -1.0, 1.0));

@@ -48,25 +48,32 @@ double PointMassModel::scheduled_alpha_rad(double energy_Jpkg) const {
   return alpha_profile_->alpha_rad(energy_Jpkg / entry_energy_Jpkg_) + alpha_modulation_rad_;
 }
 
-double PointMassModel::alpha_at(double energy_Jpkg) const {
-  const double a = scheduled_alpha_rad(energy_Jpkg);
-  if (alpha_shift_rad_ == 0.0) return clamp(a, 0.0, alpha_max_rad_);
+double PointMassModel::shifted_alpha_rad(double scheduled_rad, double energy_Jpkg) const {
+  if (alpha_shift_rad_ == 0.0) return clamp(scheduled_rad, 0.0, alpha_max_rad_);
   const double span = shift_e_full_Jpkg_ - shift_e_zero_Jpkg_;
   const double w = span > 0.0 ? clamp((energy_Jpkg - shift_e_zero_Jpkg_) / span, 0.0, 1.0) : 1.0;
-  return clamp(a + w * alpha_shift_rad_, 0.0, alpha_max_rad_);
+  return clamp(scheduled_rad + w * alpha_shift_rad_, 0.0, alpha_max_rad_);
+}
+
+double PointMassModel::alpha_at(double energy_Jpkg) const {
+  return shifted_alpha_rad(scheduled_alpha_rad(energy_Jpkg), energy_Jpkg);
 }
 
 double PointMassModel::alpha_at(double energy_Jpkg, double mach) const {
-  const double shifted = alpha_at(energy_Jpkg);
+  const double scheduled = scheduled_alpha_rad(energy_Jpkg);
+  const double shifted = shifted_alpha_rad(scheduled, energy_Jpkg);
   if (!(alpha_shift_rad_ < 0.0)) return shifted;
-  const double profile = clamp(scheduled_alpha_rad(energy_Jpkg), 0.0, alpha_max_rad_);
+  const double profile = clamp(scheduled, 0.0, alpha_max_rad_);
   return std::fmax(shifted, std::fmin(profile, alpha_max_lift_over_drag_rad(mach)));
 }
 
 AeroSample PointMassModel::aero_at(const PointMassState& x) const { return aero_at(x, energy_of(x)); }
 
 AeroSample PointMassModel::aero_at(const PointMassState& x, double energy_Jpkg) const {
-  AeroSample a = air(x);
+  return aero_in_air(x, energy_Jpkg, air(x));
+}
+
+AeroSample PointMassModel::aero_in_air(const PointMassState& x, double energy_Jpkg, AeroSample a) const {
   add_aero(x, alpha_shift_rad_ < 0.0 ? alpha_at(energy_Jpkg, a.mach) : alpha_at(energy_Jpkg), a);
   return a;
 }
@@ -77,9 +84,11 @@ AeroSample PointMassModel::aero(const PointMassState& x, double alpha_rad) const
   return a;
 }
 
-AeroSample PointMassModel::air(const PointMassState& x) const {
+AeroSample PointMassModel::air(const PointMassState& x) const { return air(x, std::sin(x.latitude_rad)); }
+
+AeroSample PointMassModel::air(const PointMassState& x, double sin_latitude) const {
   AeroSample a;
-  a.altitude_m = height_above_ellipsoid_m(x.radius_m, x.latitude_rad);
+  a.altitude_m = x.radius_m - surface_radius_from_sine_m(sin_latitude);  // height_above_ellipsoid_m
   const OnboardAtmosphere& atmosphere = models_->atmosphere();
   a.density_kgpm3 = density_ratio_ * atmosphere.density_kgpm3(a.altitude_m);
   a.mach = x.velocity_mps / atmosphere.speed_of_sound_mps(a.altitude_m);
@@ -95,6 +104,11 @@ void PointMassModel::add_aero(const PointMassState& x, double alpha_rad, AeroSam
 }
 
 void PointMassModel::derivatives(const PointMassState& x, double sigma_rad, PointMassState& dx, AeroSample* aux) const {
+  derivatives_in_air(x, nullptr, sigma_rad, dx, aux);
+}
+
+void PointMassModel::derivatives_in_air(const PointMassState& x, const AeroSample* air_of_x, double sigma_rad,
+                                        PointMassState& dx, AeroSample* aux) const {
   // Lu 2014 eq. (1)-(6) in SI (heading psi from North, clockwise; Earth rate w):
   //   r' = V sin g,  lon' = V cos g sin psi / (r cos lat),  lat' = V cos g cos psi / r,
   //   V' = -D - g0(r) sin g + w^2 r cos lat (sin g cos lat - cos g sin lat cos psi),
@@ -106,7 +120,7 @@ void PointMassModel::derivatives(const PointMassState& x, double sigma_rad, Poin
   const double sg = std::sin(x.flight_path_rad), cg = std::cos(x.flight_path_rad);
   const double sp = std::sin(x.heading_rad), cp = std::cos(x.heading_rad);
   const double sl = std::sin(x.latitude_rad), cl = std::cos(x.latitude_rad);
-  const AeroSample a = aero_at(x);
+  const AeroSample a = aero_in_air(x, energy_of(x), air_of_x != nullptr ? *air_of_x : air(x, sl));
   if (aux != nullptr) *aux = a;
   const double g = gravity_mps2(r);
   const double w2r = w * w * r;
@@ -121,11 +135,15 @@ void PointMassModel::derivatives(const PointMassState& x, double sigma_rad, Poin
 }
 
 void PointMassModel::rk4(const PointMassState& x, double sigma_a_rad, double sigma_b_rad, double h_s,
-                         PointMassState& out) const {
+                         PointMassState& out, const AeroSample* air_of_x) const {
   const double rate = h_s > 0.0 ? (sigma_b_rad - sigma_a_rad) / h_s : 0.0;
+  // The first stage is evaluated at x itself (numerics::rk4_step): its air may be given.
+  bool first_stage = true;
   auto f = [&](double t, const Vec6& y, Vec6& dy) {
     PointMassState d;
-    derivatives(from_array(y), sigma_a_rad + rate * t, d, nullptr);
+    const PointMassState at = from_array(y);
+    derivatives_in_air(at, first_stage ? air_of_x : nullptr, sigma_a_rad + rate * t, d, nullptr);
+    first_stage = false;
     dy = to_array(d);
   };
   Vec6 y_out{};

@@ -74,7 +74,10 @@ class PointMassModel {
   /// State derivative at bank sigma (signed, > 0 turns right); aux, if given, gets the air.
   void derivatives(const PointMassState& x, double sigma_rad, PointMassState& dx, AeroSample* aux) const;
   /// One RK4 step of h seconds with the bank linear from sigma_a to sigma_b over the step.
-  void rk4(const PointMassState& x, double sigma_a_rad, double sigma_b_rad, double h_s, PointMassState& out) const;
+  /// air_of_x, if given, is air(x) (altitude, density, Mach of x: any AeroSample of x from this
+  /// model, e.g. aero_at(x)); the first stage then uses it instead of evaluating it again.
+  void rk4(const PointMassState& x, double sigma_a_rad, double sigma_b_rad, double h_s, PointMassState& out,
+           const AeroSample* air_of_x = nullptr) const;
   const OnboardModels& models() const { return *models_; }
   double earth_rate_radps() const { return earth_rate_radps_; }
   double entry_energy_Jpkg() const { return entry_energy_Jpkg_; }
@@ -82,8 +85,17 @@ class PointMassModel {
  private:
   /// The profile's alpha plus the modulation offset at an energy (unclamped, unshifted).
   double scheduled_alpha_rad(double energy_Jpkg) const;
+  /// The scheduled alpha with the shift's ramp at that energy, within [0, alpha_max].
+  double shifted_alpha_rad(double scheduled_rad, double energy_Jpkg) const;
+  /// aero_at(x, e) on the air sample `a` of x (its altitude, density and Mach are kept).
+  AeroSample aero_in_air(const PointMassState& x, double energy_Jpkg, AeroSample a) const;
+  /// derivatives() on the air sample of x (evaluated here when null).
+  void derivatives_in_air(const PointMassState& x, const AeroSample* air_of_x, double sigma_rad, PointMassState& dx,
+                          AeroSample* aux) const;
   /// Altitude, density and Mach of a state (the air part of an AeroSample).
   AeroSample air(const PointMassState& x) const;
+  /// The same with sin(latitude) given.
+  AeroSample air(const PointMassState& x, double sin_latitude) const;
   /// Alpha, coefficients, drag and lift at alpha onto the air sample of the same state.
   void add_aero(const PointMassState& x, double alpha_rad, AeroSample& a) const;
 

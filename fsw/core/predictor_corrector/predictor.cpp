@@ -172,17 +172,17 @@ void Predictor::note_air(const AeroSample& a, double v_mps, Prediction& pr) cons
   pr.aero_accel_max_mps2 = std::fmax(pr.aero_accel_max_mps2, std::hypot(a.drag_mps2, a.lift_mps2));
 }
 
-bool Predictor::step(const PointMassState& x, double e, double sigma_a, double sigma_b, double ef, PointMassState& xn,
-                     double& en, double& h) const {
+bool Predictor::step(const PointMassState& x, const AeroSample& air_of_x, double e, double sigma_a, double sigma_b,
+                     double ef, PointMassState& xn, double& en, double& h) const {
   // One step; a step that passes the TAEM energy is shortened onto it (fraction by secant on E,
   // bounded refinements). Returns true when the TAEM energy is reached.
   h = params_->step_s;
-  model_->rk4(x, sigma_a, sigma_b, h, xn);
+  model_->rk4(x, sigma_a, sigma_b, h, xn, &air_of_x);
   en = energy_of(xn);
   if (!(en <= ef) || !finite_state(xn)) return false;
   double f = (e - ef) / (e - en);
   for (int i = 0; i < 3; ++i) {
-    model_->rk4(x, sigma_a, sigma_a + f * (sigma_b - sigma_a), f * params_->step_s, xn);
+    model_->rk4(x, sigma_a, sigma_a + f * (sigma_b - sigma_a), f * params_->step_s, xn, &air_of_x);
     en = energy_of(xn);
     if (std::fabs(en - ef) < 1e-3 * std::fabs(e - ef) + 1e-6) break;
     f = clamp(f * (e - ef) / (e - en), 0.0, 1.0);
@@ -262,13 +262,13 @@ Prediction Predictor::run(const PredictionStart& start, const BankProfile& bank,
     }
     PointMassState xn;
     double en = 0.0, h = 0.0;
-    const bool at_taem = step(x, e, s_a, s_b, ef, xn, en, h);
+    const bool at_taem = step(x, a, e, s_a, s_b, ef, xn, en, h);
     model_->set_alpha_modulation(0.0);
     if (!finite_state(xn) || !std::isfinite(en)) {
       pr.end = PredictionEnd::kNonFinite;
       break;
     }
-    range_rad += great_circle(x.latitude_rad, x.longitude_rad, xn.latitude_rad, xn.longitude_rad).arc_rad;
+    range_rad += great_circle_arc_rad(x.latitude_rad, x.longitude_rad, xn.latitude_rad, xn.longitude_rad);
     rec.add(x, e, xn, at_taem ? ef : en, sigma_cmd);
     x = xn;
     e = en;

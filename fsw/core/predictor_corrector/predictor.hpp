@@ -125,8 +125,9 @@ class Predictor {
   double step_alpha_rad(const AeroSample& a, double v_mps, double e, double sigma_cmd_rad, double sigma_mid_rad,
                         bool reversing) const;
   void note_air(const AeroSample& a, double v_mps, Prediction& pr) const;
-  bool step(const PointMassState& x, double e, double sigma_a, double sigma_b, double ef, PointMassState& xn,
-            double& en, double& h) const;
+  /// One step from x (air_of_x: an AeroSample of x, whose air part the first RK4 stage uses).
+  bool step(const PointMassState& x, const AeroSample& air_of_x, double e, double sigma_a, double sigma_b, double ef,
+            PointMassState& xn, double& en, double& h) const;
   void finish(const PointMassState& x, double e, double t, double range_rad, Prediction& pr) const;
 
   PointMassModel* model_ = nullptr;  // its alpha shift is set per prediction

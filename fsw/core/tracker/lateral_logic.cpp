@@ -58,13 +58,11 @@ ArrivalLineTarget LateralLogic::arrival_line_target(const RelativeState& s) cons
   const TrackerParams& p = *params_;
   ArrivalLineTarget t;
   const double aim_lat = taem_.latitude_rad, aim_lon = taem_.longitude_rad;
-  const GreatCircle to_aim = great_circle(s.latitude_rad, s.longitude_rad, aim_lat, aim_lon);  // (7.1)-(7.2)
+  const GreatCircleBothWays to_aim =
+      great_circle_both_ways(s.latitude_rad, s.longitude_rad, aim_lat, aim_lon);  // (7.1)-(7.2)
   t.range_m = kEarthRadius_m * to_aim.arc_rad;
   t.bearing_rad = to_aim.azimuth_rad;
-  if (t.range_m > p.aim_min_range_m) {
-    const double back = great_circle(aim_lat, aim_lon, s.latitude_rad, s.longitude_rad).azimuth_rad;
-    t.offset_rad = wrap_pi(back - (taem_.heading_rad + M_PI));
-  }
+  if (t.range_m > p.aim_min_range_m) t.offset_rad = wrap_pi(to_aim.back_azimuth_rad - (taem_.heading_rad + M_PI));
   t.cross_track_m = t.range_m * std::sin(t.offset_rad);
   t.line_heading_rad = t.bearing_rad - t.offset_rad;
   double approach_rad =
