@@ -322,6 +322,15 @@ double OnboardModels::heat_flux_Wpm2(const HeatFluxFlow& flow, double alpha_rad)
   return heat_flux_coefficient(alpha_rad) * flow.sqrt_density * flow.velocity_power;  // (3.6)
 }
 
+double OnboardModels::sensed_dynamic_pressure_Pa(double drag_mps2, double cd) const {
+  return cd > 0.0 ? drag_mps2 / (cd * area_over_mass_m2pkg_) : 0.0;
+}
+
+double OnboardModels::sensed_density_kgpm3(double drag_mps2, double velocity_mps, double cd) const {
+  const double v2 = velocity_mps * velocity_mps;
+  return v2 > 0.0 ? 2.0 * sensed_dynamic_pressure_Pa(drag_mps2, cd) / v2 : 0.0;
+}
+
 double OnboardModels::heat_flux_Wpm2(double density_kgpm3, double velocity_mps, double alpha_rad) const {
   return heat_flux_Wpm2(heat_flux_flow(density_kgpm3, velocity_mps), alpha_rad);
 }

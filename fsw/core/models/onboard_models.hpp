@@ -208,6 +208,11 @@ class OnboardModels {
   void set_aero_trimmed(bool trimmed) { aero_trimmed_ = trimmed; }
   double mass_kg() const { return mass_kg_; }
   double area_over_mass() const { return area_over_mass_m2pkg_; }
+  /// The air a sensed drag implies through the on-board C_D S/m (D.1, D = q C_D S/m): the
+  /// dynamic pressure q = D / (C_D S/m) and the density rho = 2 q / V^2. An error of the
+  /// on-board C_D S/m moves both as it moves q itself. 0 without a positive C_D (or speed).
+  double sensed_dynamic_pressure_Pa(double drag_mps2, double cd) const;
+  double sensed_density_kgpm3(double drag_mps2, double velocity_mps, double cd) const;
 
   double mach(double altitude_m, double velocity_mps) const;
   /// How deep a TAEM state at this altitude and the TAEM energy lies inside the mission's TAEM

@@ -132,11 +132,10 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   out.sigma_rad = sign * std::fmax(law.sigma_rad, kMinBankMagnitude_rad);
   // While a reversal rolls the bank through wings level, alpha sheds the vertical lift in excess
   // of the command's within the band, as far as the heat flux allows (density from the sensed
-  // drag, D = rho V^2 C_D S / 2m, D.1).
+  // drag).
   const double alpha_min = std::fmax(alpha_profile_rad - params_.alpha_band_rad, 0.0);
   if (lateral_state_.reversing) {
-    const double density =
-        cd > 0.0 ? 2.0 * s.drag_mps2 / (s.velocity_mps * s.velocity_mps * cd * models_.area_over_mass()) : 0.0;
+    const double density = models_.sensed_density_kgpm3(s.drag_mps2, s.velocity_mps, cd);
     out.alpha_rad = reversal_alpha_rad(models_, alpha_rad, mach, law.sigma_rad, in.sigma_flown_rad, sigma_rate_max_radps_,
                                        alpha_min, density, s.velocity_mps, limits_, params_);
   } else {

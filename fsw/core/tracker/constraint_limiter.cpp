@@ -87,7 +87,7 @@ double ConstraintLimiter::sensed_drag_limit_mps2(const RelativeState& s, double 
   // moves it as it moves q itself.
   const double D = s.drag_mps2;
   if (!(D > params_->min_drag_mps2) || !(cd > 0.0)) return kUnconstrainedDrag_mps2;
-  const double q = D / (cd * models_->area_over_mass());
+  const double q = models_->sensed_dynamic_pressure_Pa(D, cd);
   const double margin = limits_.constraint_margin;
   double limit = kUnconstrainedDrag_mps2;
   auto scale_linear = [&](double value, double max) {
@@ -96,7 +96,8 @@ double ConstraintLimiter::sensed_drag_limit_mps2(const RelativeState& s, double 
   scale_linear(q, limits_.q_max_Pa);
   scale_linear(q * alpha_rad, limits_.q_alpha_max_Pa_rad);
   scale_linear(std::hypot(D, s.lift_mps2), limits_.load_factor_max_mps2);
-  const double heat = models_->heat_flux_Wpm2(2.0 * q / (s.velocity_mps * s.velocity_mps), s.velocity_mps, alpha_rad);
+  const double heat =
+      models_->heat_flux_Wpm2(models_->sensed_density_kgpm3(D, s.velocity_mps, cd), s.velocity_mps, alpha_rad);
   if (limits_.heat_flux_max_Wpm2 > 0.0 && heat > 0.0) {
     const double ratio = margin * limits_.heat_flux_max_Wpm2 / heat;
     limit = std::fmin(limit, D * ratio * ratio);

@@ -134,7 +134,7 @@ CycleContext EntryTracker::make_context(const RelativeState& s, double dt_s, con
   c.cos_gamma = std::cos(s.flight_path_rad);
   c.cd_ref = models_.drag_coefficient(alpha_ref_rad, s.energy_Jpkg, s.altitude_m);
   c.cd_flown = models_.drag_coefficient(alpha_flown_rad, s.energy_Jpkg, s.altitude_m);
-  c.dynamic_pressure_Pa = c.cd_ref > 0.0 ? D_ref_alpha / (c.cd_ref * models_.area_over_mass()) : ref.q;
+  c.dynamic_pressure_Pa = c.cd_ref > 0.0 ? models_.sensed_dynamic_pressure_Pa(D_ref_alpha, c.cd_ref) : ref.q;
   // The limits hold at the flown alpha (true q, q alpha and load factor) and are referred to
   // the reference alpha.
   c.constraint_limit_mps2 = limiter_.sensed_drag_limit_mps2(s, alpha_flown_rad, c.cd_flown) * D_ref_alpha /
