@@ -74,6 +74,24 @@ double integrate_simpson(F&& f, double a, double b, double tol) {
 }  // namespace
 
 // ---------------------------------------------------------------- models
+TEST(OnboardModels, SensedDragGivesBackTheDynamicPressureAndDensityItWasMadeFrom) {
+  // D = q C_D S / m (D.1) with q = rho V^2 / 2, made by hand from the vehicle's mass and area:
+  // the sensed-drag conversions must give q and rho back; without a C_D or a speed, 0.
+  OnboardModels models;
+  const double mass_kg = 37400.0, area_m2 = 149.4;
+  ASSERT_EQ(models.init_vehicle(mass_kg, area_m2, 0.3), Status::kOk);
+  for (const double rho : {1e-5, 3.2e-4, 0.041}) {
+    for (const double v : {700.0, 3100.0, 7400.0}) {
+      const double cd = 0.83, q = 0.5 * rho * v * v, drag = q * cd * area_m2 / mass_kg;
+      EXPECT_NEAR(models.sensed_dynamic_pressure_Pa(drag, cd), q, 1e-12 * q);
+      EXPECT_NEAR(models.sensed_density_kgpm3(drag, v, cd), rho, 1e-12 * rho);
+    }
+  }
+  EXPECT_EQ(models.sensed_dynamic_pressure_Pa(2.0, 0.0), 0.0);
+  EXPECT_EQ(models.sensed_density_kgpm3(2.0, 3000.0, -0.1), 0.0);
+  EXPECT_EQ(models.sensed_density_kgpm3(2.0, 0.0, 0.8), 0.0);
+}
+
 TEST(OnboardModels, EnergyRoundTripAndGravity) {
   const double r = radius_of(70000.0);
   const double e = specific_energy_Jpkg(r, 6000.0);

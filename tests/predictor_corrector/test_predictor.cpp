@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <memory>
 
 #include "dynamics/open_loop.hpp"
@@ -124,6 +125,32 @@ TEST(PcPointMass, RangingShiftStopsAtTheAlphaOfMaximumLiftOverDrag) {
   EXPECT_NEAR(model->alpha_at(e, 10.0), profile - 5.0 * kDeg, 1e-12);
   model->set_alpha_shift(3.0 * kDeg, 0.5 * e0, 0.4 * e0);
   EXPECT_NEAR(model->alpha_at(e, 10.0), profile + 3.0 * kDeg, 1e-12);
+}
+
+TEST(PcPointMass, AStepGivenTheAirOfItsStartEqualsTheStepThatEvaluatesIt) {
+  // The predictor hands each RK4 step the air it already sampled at the step's start (the first
+  // stage is evaluated there, numerics::rk4_step); the step must be the one that evaluates it
+  // itself, bit for bit, with or without a ranging shift and a modulation offset.
+  auto setup = std::make_unique<GuidanceSetup>();
+  ASSERT_TRUE(make_guidance_setup(load("orbiter"), *setup).empty());
+  const double e0 = specific_energy_Jpkg(kEarthRadius_m + setup->mission.entry.altitude_m, setup->mission.entry.velocity_mps);
+  auto model = std::make_unique<PointMassModel>();
+  model->init(&setup->models, &setup->alpha_profile, e0, setup->mission.limits.alpha_max_rad);
+  model->set_density_ratio(1.07);
+  PointMassState x{kEarthRadius_m + 62000.0, -1.9, 0.31, 6300.0, -0.6 * kDeg, 48.0 * kDeg};
+  auto bits_equal = [](const PointMassState& a, const PointMassState& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+  };
+  for (const double shift : {0.0, -4.0 * kDeg}) {
+    model->set_alpha_shift(shift, 0.6 * e0, 0.2 * e0);
+    model->set_alpha_modulation(shift == 0.0 ? 0.0 : -2.5 * kDeg);
+    const AeroSample air = model->aero_at(x);
+    PointMassState given, evaluated;
+    model->rk4(x, 70.0 * kDeg, 68.0 * kDeg, 2.0, given, &air);
+    model->rk4(x, 70.0 * kDeg, 68.0 * kDeg, 2.0, evaluated);
+    EXPECT_TRUE(bits_equal(given, evaluated)) << "shift " << shift;
+    EXPECT_GT(std::fabs(given.velocity_mps - x.velocity_mps), 1.0);  // a step that flew
+  }
 }
 
 TEST(PcPredictor, EquilibriumGlideCoversTheAnalyticRange) {
