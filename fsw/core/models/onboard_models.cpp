@@ -174,7 +174,7 @@ void OnboardAero::coefficients(double alpha_rad, double mach, double& cl, double
   const MachSlice slice = at_mach(mach);
   cl = slice.cl(alpha_rad);
   cd = slice.cd(alpha_rad);
-  if (n_alpha_ >= 2) hint_alpha_ = slice.hint_alpha_;
+  hint_alpha_ = slice.hint_alpha_;
 }
 double OnboardAero::cl(double alpha_rad, double mach) const { return lift_scale_ * interpolate(cl_, alpha_rad, mach); }
 double OnboardAero::cd(double alpha_rad, double mach) const { return interpolate(cd_, alpha_rad, mach); }
@@ -327,8 +327,12 @@ double OnboardModels::sensed_dynamic_pressure_Pa(double drag_mps2, double cd) co
 }
 
 double OnboardModels::sensed_density_kgpm3(double drag_mps2, double velocity_mps, double cd) const {
+  return density_of_dynamic_pressure_kgpm3(sensed_dynamic_pressure_Pa(drag_mps2, cd), velocity_mps);
+}
+
+double OnboardModels::density_of_dynamic_pressure_kgpm3(double dynamic_pressure_Pa, double velocity_mps) {
   const double v2 = velocity_mps * velocity_mps;
-  return v2 > 0.0 ? 2.0 * sensed_dynamic_pressure_Pa(drag_mps2, cd) / v2 : 0.0;
+  return v2 > 0.0 ? 2.0 * dynamic_pressure_Pa / v2 : 0.0;
 }
 
 double OnboardModels::heat_flux_Wpm2(double density_kgpm3, double velocity_mps, double alpha_rad) const {

@@ -213,6 +213,8 @@ class OnboardModels {
   /// on-board C_D S/m moves both as it moves q itself. 0 without a positive C_D (or speed).
   double sensed_dynamic_pressure_Pa(double drag_mps2, double cd) const;
   double sensed_density_kgpm3(double drag_mps2, double velocity_mps, double cd) const;
+  /// rho = 2 q / V^2 (0 without a speed): the density of a dynamic pressure already in hand.
+  static double density_of_dynamic_pressure_kgpm3(double dynamic_pressure_Pa, double velocity_mps);
 
   double mach(double altitude_m, double velocity_mps) const;
   /// How deep a TAEM state at this altitude and the TAEM energy lies inside the mission's TAEM

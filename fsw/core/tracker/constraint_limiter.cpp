@@ -96,8 +96,8 @@ double ConstraintLimiter::sensed_drag_limit_mps2(const RelativeState& s, double 
   scale_linear(q, limits_.q_max_Pa);
   scale_linear(q * alpha_rad, limits_.q_alpha_max_Pa_rad);
   scale_linear(std::hypot(D, s.lift_mps2), limits_.load_factor_max_mps2);
-  const double heat =
-      models_->heat_flux_Wpm2(models_->sensed_density_kgpm3(D, s.velocity_mps, cd), s.velocity_mps, alpha_rad);
+  const double heat = models_->heat_flux_Wpm2(OnboardModels::density_of_dynamic_pressure_kgpm3(q, s.velocity_mps),
+                                              s.velocity_mps, alpha_rad);
   if (limits_.heat_flux_max_Wpm2 > 0.0 && heat > 0.0) {
     const double ratio = margin * limits_.heat_flux_max_Wpm2 / heat;
     limit = std::fmin(limit, D * ratio * ratio);
