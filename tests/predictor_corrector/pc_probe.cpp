@@ -65,11 +65,12 @@ int main(int argc, char** argv) {
       if (stack.executive->counters().planner_runs > plans) {
         plans = stack.executive->counters().planner_runs;
         const fsw::PcPlanDiagnostics& g = pl.diagnostics();
-        std::printf("t %7.1f plan %3d %-14s pred %2d s0 %6.2f da %5.2f K %.3f LD %.3f z %9.0f y %8.0f hf %6.0f psi %6.2f rev %d E/E0 %.3f aim %.0f\n",
+        std::printf("t %7.1f plan %3d %-14s pred %2d s0 %6.2f da %5.2f K %.3f LD %.3f z %9.0f y %8.0f hf %6.0f psi %6.2f rev %d E/E0 %.3f aim %.0f hold E/E0 %.4f\n",
                     nav.state.t_s, plans, fsw::to_string(g.status), g.predictions, g.sigma0_rad * d, g.alpha_shift_rad * d,
                     g.density_ratio, g.lift_scale, g.miss_along_m, g.miss_cross_m, g.final_altitude_m,
                     g.final_heading_err_rad * d, g.reversals, nav.state.energy_Jpkg / pl.entry_energy_Jpkg(),
-                    stack.executive->active_profile().taem_altitude_m);
+                    stack.executive->active_profile().taem_altitude_m,
+                    stack.executive->active_profile().reversal_hold_energy_Jpkg / pl.entry_energy_Jpkg());
       }
       sim->set_command(out.alpha_rad, out.sigma_rad);
     }
