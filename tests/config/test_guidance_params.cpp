@@ -60,7 +60,8 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
   // reversal modulation on the long rolls only (predictor-corrector, 10.4-10.5); HORUS plans on
   // the model's C_D S/m (its heat-flux limit leaves no room); the X-38's alpha band down to its
   // L/D-max alpha and the bank it keeps to turn (predictor-corrector, docs/guidance_design.md
-  // 10.2-10.3) and its 3-sigma C_D S/m knowledge (its q limit in the terminal dive); HORUS and the
+  // 10.2-10.3), its 3-sigma C_D S/m knowledge (its q limit in the terminal dive) and its least bank
+  // after capture (its lateral authority against the Coriolis drift); HORUS and the
   // X-38 keep the terminal aim on its target (their terminal limits and TAEM altitude leave no
   // room), and HORUS holds no bank side for range. Nothing else.
   const std::map<std::string, std::set<std::string>> exceptions = {
@@ -69,7 +70,8 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
       {"horus", {"predictor_corrector.drag_model_uncertainty", "predictor_corrector.terminal_range_aim_fraction",
                  "predictor_corrector.reversal_hold_predictions"}},
       {"x38", {"predictor_corrector.alpha_band_deg", "predictor_corrector.lateral_bank_deg",
-               "predictor_corrector.terminal_range_aim_fraction", "predictor_corrector.drag_model_uncertainty"}},
+               "predictor_corrector.terminal_range_aim_fraction", "predictor_corrector.drag_model_uncertainty",
+               "predictor_corrector.bank_min_deg"}},
       {"x33", {}}};
   for (const auto& [name, keys] : exceptions) {
     const auto r = reentry::config::load_mission(name.c_str());
@@ -94,6 +96,7 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
     EXPECT_NEAR(setup->pc_params.corridor_taem_rad, name == "orbiter" ? 5.0 * M_PI / 180.0 : defaults.corridor_taem_rad,
                 1e-15) << name;
     EXPECT_EQ(setup->pc_params.modulation_min_roll_s, name == "orbiter" ? 50.0 : defaults.modulation_min_roll_s) << name;
+    EXPECT_NEAR(setup->pc_params.bank_min_rad, name == "x38" ? 20.0 * M_PI / 180.0 : defaults.bank_min_rad, 1e-15) << name;
   }
 }
 
