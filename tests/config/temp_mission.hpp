@@ -1,5 +1,6 @@
 // A copy of the X-33 mission and vehicle files in a temporary directory, to be edited by a
-// test and loaded (the loader's and the guidance adapter's bad-input tests).
+// test and loaded (the loader's and the guidance adapter's bad-input tests). The mission's own
+// tuning tables ([guidance.*]) are left out: the tests add theirs before [sim], in [guidance].
 #pragma once
 
 #include <gtest/gtest.h>
@@ -56,6 +57,11 @@ class TempMission {
   TempMission() : tmp_("reentry_config_test") {
     mission_ = slurp(kConfigDir + "/missions/x33.toml");
     vehicle_ = slurp(kConfigDir + "/vehicles/x33.toml");
+    size_t table;
+    while ((table = mission_.find("\n[guidance.")) != std::string::npos) {
+      const size_t next = mission_.find("\n[", table + 1);
+      mission_.erase(table, next == std::string::npos ? std::string::npos : next - table);
+    }
   }
   const std::filesystem::path& dir() const { return tmp_.path(); }
   std::string& mission() { return mission_; }

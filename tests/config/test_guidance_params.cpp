@@ -63,7 +63,8 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
   // 10.2-10.3), its 3-sigma C_D S/m knowledge (its q limit in the terminal dive) and its least bank
   // after capture (its lateral authority against the Coriolis drift); HORUS and the
   // X-38 keep the terminal aim on its target (their terminal limits and TAEM altitude leave no
-  // room), and HORUS holds no bank side for range. Nothing else.
+  // room), and HORUS holds no bank side for range; the X-33's predictor-corrector banks at most
+  // 75 deg (its terminal descent's turn). Nothing else.
   const std::map<std::string, std::set<std::string>> exceptions = {
       {"orbiter", {"tracker.pullout_guard_every_descent", "predictor_corrector.corridor_entry_deg",
                    "predictor_corrector.corridor_taem_deg", "predictor_corrector.modulation_min_roll_s"}},
@@ -72,7 +73,7 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
       {"x38", {"predictor_corrector.alpha_band_deg", "predictor_corrector.lateral_bank_deg",
                "predictor_corrector.terminal_range_aim_fraction", "predictor_corrector.drag_model_uncertainty",
                "predictor_corrector.bank_min_deg"}},
-      {"x33", {}}};
+      {"x33", {"predictor_corrector.bank_max_deg", "predictor_corrector.final_bank_max_deg"}}};
   for (const auto& [name, keys] : exceptions) {
     const auto r = reentry::config::load_mission(name.c_str());
     ASSERT_TRUE(r.ok) << r.error;
@@ -97,6 +98,9 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
                 1e-15) << name;
     EXPECT_EQ(setup->pc_params.modulation_min_roll_s, name == "orbiter" ? 50.0 : defaults.modulation_min_roll_s) << name;
     EXPECT_NEAR(setup->pc_params.bank_min_rad, name == "x38" ? 20.0 * M_PI / 180.0 : defaults.bank_min_rad, 1e-15) << name;
+    EXPECT_NEAR(setup->pc_params.bank_max_rad, name == "x33" ? 75.0 * M_PI / 180.0 : defaults.bank_max_rad, 1e-15) << name;
+    EXPECT_NEAR(setup->pc_params.final_bank_max_rad, name == "x33" ? 75.0 * M_PI / 180.0 : defaults.final_bank_max_rad,
+                1e-15) << name;
   }
 }
 
