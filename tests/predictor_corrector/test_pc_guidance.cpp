@@ -191,5 +191,22 @@ TEST_F(PcHeatRelief, AnAlphaFreeHeatFluxKeepsTheModulation) {
   EXPECT_EQ(heat_relief_alpha_rad(*models, 37.0 * kDeg, 40.0 * kDeg, rho, kV_mps, lim), 37.0 * kDeg);
 }
 
+// The terminal phase flies its reversals unmodulated (modulation_in_terminal = 0): the phase is the
+// terminal altitude law's own (modulation stops exactly where that law's weight starts to rise),
+// and with the setting on, a reversal is modulated at every energy.
+TEST(PcTerminalPhase, ReversalsAreModulatedExactlyOutsideTheTerminalAltitudeLaw) {
+  PredictorCorrectorParams p;
+  const TerminalAltitude terminal{4.0e5, 3.0e7, 25000.0};
+  const double start = terminal.taem_energy_Jpkg + p.terminal_span_fraction * terminal.span_Jpkg;
+  for (double e : {start + 1.0e4, start + 1.0, start - 1.0, start - 1.0e5, terminal.taem_energy_Jpkg + 1.0}) {
+    p.modulation_in_terminal = 0;
+    const bool in_terminal = terminal.at(e, 30000.0, 1200.0, 6.0, p).weight > 0.0;
+    EXPECT_EQ(terminal.modulates(e, p), !in_terminal) << e - start;
+    EXPECT_EQ(terminal.modulates(e, p), e > start) << e - start;
+    p.modulation_in_terminal = 1;
+    EXPECT_TRUE(terminal.modulates(e, p)) << e - start;
+  }
+}
+
 }  // namespace
 }  // namespace reentry::fsw

@@ -134,7 +134,7 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   // of the command's within the band, as far as the heat flux allows (density from the sensed
   // drag).
   const double alpha_min = std::fmax(alpha_profile_rad - params_.alpha_band_rad, 0.0);
-  if (lateral_state_.reversing) {
+  if (lateral_state_.reversing && terminal.modulates(s.energy_Jpkg, params_)) {
     const double density = models_.sensed_density_kgpm3(s.drag_mps2, s.velocity_mps, cd);
     out.alpha_rad = reversal_alpha_rad(models_, alpha_rad, mach, law.sigma_rad, in.sigma_flown_rad, sigma_rate_max_radps_,
                                        alpha_min, density, s.velocity_mps, limits_, params_);

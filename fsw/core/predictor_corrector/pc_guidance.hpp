@@ -58,6 +58,10 @@ struct TerminalAltitude {
   double target_altitude_m = 0.0;
   TerminalCommand at(double energy_Jpkg, double altitude_m, double velocity_mps, double drag_mps2,
                      const PredictorCorrectorParams& p) const;
+  /// A reversal's lift modulation is flown at this energy (modulation_in_terminal).
+  bool modulates(double energy_Jpkg, const PredictorCorrectorParams& p) const {
+    return p.modulation_in_terminal != 0 || energy_Jpkg > taem_energy_Jpkg + p.terminal_span_fraction * span_Jpkg;
+  }
 };
 
 /// What the bank law needs of the present (navigated or predicted) state.

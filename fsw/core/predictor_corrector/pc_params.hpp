@@ -39,6 +39,11 @@ struct PredictorCorrectorParams {
   // share of the profile's.
   double modulation_min_lift_ratio = 0.3;
   double modulation_min_roll_s = 20.0;  // only reversals lasting this long are modulated
+  // Not in the terminal phase (terminal_span_fraction, below; 1: there too): the last plan comes
+  // replan_floor_span_fraction of the span before TAEM, and a modulated roll's lower C_D (10-20 %
+  // less drag over a 40-50 s roll; ds/dE = -1/D) lengthens the flight by kilometres at energies
+  // that plan put elsewhere. The terminal altitude law takes the unmodulated roll's climb instead.
+  int modulation_in_terminal = 0;
   // Final bank sigma_f of the linear profile: the quasi-equilibrium glide bank at the TAEM state
   // of the target altitude (bounded), or a share of sigma_0.
   double final_bank_max_rad = 80.0 * M_PI / 180.0;
@@ -179,6 +184,7 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("final_reversal_window", p.final_reversal_window, U::kNone, 0.0, 10.0, "final-reversal window / reversal time");
   v("final_turn_steps", p.final_turn_steps, U::kNone, 5, 500, "final-turn prediction steps");
   v("bank_settled_deg", p.bank_settled_rad, U::kDeg, 0.1, 30.0, "bank settled on its command within this");
+  v("modulation_in_terminal", p.modulation_in_terminal, U::kNone, 0, 1, "reversal modulation also in the terminal phase (0: not there)");
   v("final_keep_fraction", p.final_keep_fraction, U::kNone, 0.0, 1.0, "final reversal only beyond this share of the TAEM tolerances");
   v("replan_period_s", p.replan_period_s, U::kNone, 0.5, 1000.0, "plan period [s]");
   v("replan_floor_span_fraction", p.replan_floor_span_fraction, U::kNone, 0.0, 1.0, "no plans in this last share of the span");

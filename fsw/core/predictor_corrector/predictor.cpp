@@ -253,7 +253,8 @@ Prediction Predictor::run(const PredictionStart& start, const BankProfile& bank,
       else if (lateral.sign != sign && ++pr.reversals == 1) pr.first_reversal_energy_Jpkg = e;
     }
     const double s_a = filter.value(), s_b = filter.step(sigma_cmd);
-    const double alpha_mod = step_alpha_rad(a, x.velocity_mps, e, sigma_cmd, 0.5 * (s_a + s_b), lateral.reversing);
+    const double alpha_mod = step_alpha_rad(a, x.velocity_mps, e, sigma_cmd, 0.5 * (s_a + s_b),
+                                           lateral.reversing && config_.terminal.modulates(e, *params_));
     model_->set_alpha_modulation(alpha_mod - a.alpha_rad);
     if (trace != nullptr && trace->n < PredictionTrace::kCapacity) {
       trace->t_s[trace->n] = t;
