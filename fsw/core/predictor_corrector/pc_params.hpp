@@ -39,11 +39,12 @@ struct PredictorCorrectorParams {
   // share of the profile's.
   double modulation_min_lift_ratio = 0.3;
   double modulation_min_roll_s = 20.0;  // only reversals lasting this long are modulated
-  // Not in the terminal phase (terminal_span_fraction, below; 1: there too): the last plan comes
-  // replan_floor_span_fraction of the span before TAEM, and a modulated roll's lower C_D (10-20 %
-  // less drag over a 40-50 s roll; ds/dE = -1/D) lengthens the flight by kilometres at energies
-  // that plan put elsewhere. The terminal altitude law takes the unmodulated roll's climb instead.
-  int modulation_in_terminal = 0;
+  // 0: not in the terminal phase (terminal_span_fraction, below), where no plan comes in the last
+  // replan_floor_span_fraction of the span and a modulated roll's lower C_D (ds/dE = -1/D)
+  // lengthens the flight at energies the last plan put elsewhere; the terminal altitude law then
+  // takes the unmodulated roll's climb, which needs the authority to sink back onto the TAEM
+  // altitude (a mission that has it sets 0).
+  int modulation_in_terminal = 1;
   // Final bank sigma_f of the linear profile: the quasi-equilibrium glide bank at the TAEM state
   // of the target altitude (bounded), or a share of sigma_0.
   double final_bank_max_rad = 80.0 * M_PI / 180.0;
