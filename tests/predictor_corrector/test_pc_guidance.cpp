@@ -206,6 +206,14 @@ TEST(PcTerminalPhase, ReversalsAreModulatedExactlyOutsideTheTerminalAltitudeLaw)
     p.modulation_in_terminal = 1;
     EXPECT_TRUE(terminal.modulates(e, p)) << e - start;
   }
+  // No terminal phase (fraction 0): no terminal altitude law, so every reversal is modulated.
+  p.modulation_in_terminal = 0;
+  p.terminal_span_fraction = 0.0;
+  for (double e : {terminal.taem_energy_Jpkg + 1.0, terminal.taem_energy_Jpkg + 1.0e6}) {
+    EXPECT_FALSE(terminal.in_phase(e, p));
+    EXPECT_EQ(terminal.at(e, 30000.0, 1200.0, 6.0, p).weight, 0.0);
+    EXPECT_TRUE(terminal.modulates(e, p));
+  }
 }
 
 }  // namespace

@@ -94,9 +94,9 @@ double qeg_altitude_rate_mps(double velocity_mps, double radius_m, double latitu
 TerminalCommand TerminalAltitude::at(double energy_Jpkg, double altitude_m, double velocity_mps, double drag_mps2,
                                      const PredictorCorrectorParams& p) const {
   TerminalCommand c;
+  if (!in_phase(energy_Jpkg, p)) return c;
   const double de = energy_Jpkg - taem_energy_Jpkg;
   const double phase = p.terminal_span_fraction * span_Jpkg;
-  if (!(de < phase) || !(phase > 0.0)) return c;
   c.weight = clamp((phase - de) / (p.terminal_ramp_fraction * phase), 0.0, 1.0);
   // On the line h = h_f + s (E - E_f) the slope s is constant: hdot = s E' = -s D V.
   const double line = de > 0.0 ? -(altitude_m - target_altitude_m) * drag_mps2 * velocity_mps / de : 0.0;

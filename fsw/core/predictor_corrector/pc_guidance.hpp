@@ -58,9 +58,15 @@ struct TerminalAltitude {
   double target_altitude_m = 0.0;
   TerminalCommand at(double energy_Jpkg, double altitude_m, double velocity_mps, double drag_mps2,
                      const PredictorCorrectorParams& p) const;
+  /// The terminal phase: the last terminal_span_fraction of the span above the TAEM energy
+  /// (none when the fraction is 0).
+  bool in_phase(double energy_Jpkg, const PredictorCorrectorParams& p) const {
+    const double phase = p.terminal_span_fraction * span_Jpkg;
+    return phase > 0.0 && energy_Jpkg - taem_energy_Jpkg < phase;
+  }
   /// A reversal's lift modulation is flown at this energy (modulation_in_terminal).
   bool modulates(double energy_Jpkg, const PredictorCorrectorParams& p) const {
-    return p.modulation_in_terminal != 0 || energy_Jpkg > taem_energy_Jpkg + p.terminal_span_fraction * span_Jpkg;
+    return p.modulation_in_terminal != 0 || !in_phase(energy_Jpkg, p);
   }
 };
 
