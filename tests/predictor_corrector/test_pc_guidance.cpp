@@ -216,5 +216,29 @@ TEST(PcTerminalPhase, ReversalsAreModulatedExactlyOutsideTheTerminalAltitudeLaw)
   }
 }
 
+// Reversal timed by the plan: the corridor (18 deg at entry, 5 deg at TAEM, linear in energy:
+// 11.5 deg half way) waits for the plan's reversal unless the heading error passes it by the margin.
+TEST(PcReversalTiming, TheCorridorWaitsForThePlansReversalWithinItsMargin) {
+  PredictorCorrectorParams p;
+  p.corridor_entry_rad = 18.0 * M_PI / 180.0;
+  p.corridor_taem_rad = 5.0 * M_PI / 180.0;
+  p.reversal_plan_margin_rad = 2.0 * M_PI / 180.0;
+  PcLateral lateral;
+  const double e_entry = 3.0e7, e_taem = 1.0e6, e = 0.5 * (e_entry + e_taem);
+  lateral.init(p, TaemTarget{}, 2.0 * M_PI / 180.0, e_entry, e_taem);
+  const double deg = M_PI / 180.0, plan_reversal = e - 1.0e6;
+  EXPECT_NEAR(lateral.half_width_rad(e), 11.5 * deg, 1e-12);
+  for (double err_deg : {-13.4, -11.6, 0.0, 11.6, 13.4}) {
+    EXPECT_TRUE(lateral.reversal_waits_for_plan(e, plan_reversal, err_deg * deg)) << err_deg;
+  }
+  for (double err_deg : {-13.6, 13.6, 30.0}) {  // past the corridor by more than the margin
+    EXPECT_FALSE(lateral.reversal_waits_for_plan(e, plan_reversal, err_deg * deg)) << err_deg;
+  }
+  EXPECT_FALSE(lateral.reversal_waits_for_plan(e, e + 1.0e5, 12.0 * deg)) << "the plan's reversal is due";
+  EXPECT_FALSE(lateral.reversal_waits_for_plan(e, 0.0, 12.0 * deg)) << "the plan has no reversal";
+  p.reversal_plan_margin_rad = 0.0;
+  EXPECT_FALSE(lateral.reversal_waits_for_plan(e, plan_reversal, 0.0)) << "margin 0: the corridor alone";
+}
+
 }  // namespace
 }  // namespace reentry::fsw

@@ -126,6 +126,13 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   const BankLawOutput law = bank_magnitude(in, params_);
   const ArrivalGeometry g =
       lateral_.geometry(s.latitude_rad, s.longitude_rad, s.velocity_mps, s.flight_path_rad, s.lift_mps2, law.sigma_rad);
+  // Outside the terminal phase (its reversals are the end game's) a corridor reversal waits for
+  // the plan's.
+  if (!terminal.in_phase(s.energy_Jpkg, params_) &&
+      lateral_.reversal_waits_for_plan(s.energy_Jpkg, profile_.reversal_energy_Jpkg,
+                                       wrap_pi(s.heading_rad - g.target_heading_rad))) {
+    li.hold_side = true;
+  }
   li.sigma_mag_rad = law.sigma_rad;
   lateral_.decide(lateral_state_, li, g);
   const int sign = lateral_state_.sign;

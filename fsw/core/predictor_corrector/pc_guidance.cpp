@@ -293,6 +293,13 @@ double PcLateral::half_width_rad(double energy_Jpkg) const {
   return params_->corridor_taem_rad + (params_->corridor_entry_rad - params_->corridor_taem_rad) * x;
 }
 
+bool PcLateral::reversal_waits_for_plan(double energy_Jpkg, double plan_reversal_energy_Jpkg,
+                                        double heading_err_rad) const {
+  return params_->reversal_plan_margin_rad > 0.0 && plan_reversal_energy_Jpkg > 0.0 &&
+         energy_Jpkg > plan_reversal_energy_Jpkg &&
+         std::fabs(heading_err_rad) < half_width_rad(energy_Jpkg) + params_->reversal_plan_margin_rad;
+}
+
 double PcLateral::time_to_go_s(const PcLateralInput& in) const {
   const double v_f = std::fmin(taem_.velocity_mps, in.velocity_mps);
   return (in.energy_Jpkg - taem_energy_Jpkg_) / std::fmax(in.drag_mps2 * 0.5 * (in.velocity_mps + v_f), 1e-6);

@@ -186,6 +186,10 @@ class PcLateral {
                            double lift_mps2, double sigma_mag_rad) const;
   /// Corridor half-width at an energy (linear from entry to TAEM, held outside).
   double half_width_rad(double energy_Jpkg) const;
+  /// Reversal timed by the plan (reversal_plan_margin): while the plan's first reversal lies below
+  /// the present energy, the corridor's reversal waits for it, unless the heading error (signed,
+  /// off the target heading) passes the corridor by the margin.
+  bool reversal_waits_for_plan(double energy_Jpkg, double plan_reversal_energy_Jpkg, double heading_err_rad) const;
   /// The bank side (st.sign): none yet -> towards the target heading; in the final window the
   /// final and correction reversals; else reversed when the heading leaves the corridor on the
   /// side the bank turns to. Never while a roll is still under way.
