@@ -126,11 +126,11 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   const BankLawOutput law = bank_magnitude(in, params_);
   const ArrivalGeometry g =
       lateral_.geometry(s.latitude_rad, s.longitude_rad, s.velocity_mps, s.flight_path_rad, s.lift_mps2, law.sigma_rad);
+  const double heading_err = wrap_pi(s.heading_rad - g.target_heading_rad);
   // Outside the terminal phase (its reversals are the end game's) a corridor reversal waits for
   // the plan's.
   if (!terminal.in_phase(s.energy_Jpkg, params_) &&
-      lateral_.reversal_waits_for_plan(s.energy_Jpkg, profile_.reversal_energy_Jpkg,
-                                       wrap_pi(s.heading_rad - g.target_heading_rad))) {
+      lateral_.reversal_waits_for_plan(s.energy_Jpkg, profile_.reversal_energy_Jpkg, heading_err)) {
     li.hold_side = true;
   }
   li.sigma_mag_rad = law.sigma_rad;
@@ -153,7 +153,7 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   out.phase = sign * in.sigma_flown_rad < 0.0 ? Phase::kReversal : Phase::kTracking;
   out.drag_ref_mps2 = plan.drag_mps2;
   out.drag_err_mps2 = s.drag_mps2 - plan.drag_mps2;
-  out.heading_err_rad = wrap_pi(s.heading_rad - g.target_heading_rad);
+  out.heading_err_rad = heading_err;
   write_telemetry(s, in, law, g, li, out);
 }
 
