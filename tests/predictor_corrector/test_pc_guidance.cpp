@@ -216,28 +216,65 @@ TEST(PcTerminalPhase, ReversalsAreModulatedExactlyOutsideTheTerminalAltitudeLaw)
   }
 }
 
-// Reversal timed by the plan: the corridor (18 deg at entry, 5 deg at TAEM, linear in energy:
-// 11.5 deg half way) waits for the plan's reversal unless the heading error passes it by the margin.
-TEST(PcReversalTiming, TheCorridorWaitsForThePlansReversalWithinItsMargin) {
+// Capture guard timed by the plan: it waits while the plan's first reversal lies below the
+// present energy, and not once that reversal is due, when the plan has none, or when it is off.
+TEST(PcReversalTiming, TheCaptureGuardWaitsForThePlansReversal) {
   PredictorCorrectorParams p;
-  p.corridor_entry_rad = 18.0 * M_PI / 180.0;
-  p.corridor_taem_rad = 5.0 * M_PI / 180.0;
-  p.reversal_plan_margin_rad = 2.0 * M_PI / 180.0;
+  p.capture_waits_for_plan = 1;
   PcLateral lateral;
   const double e_entry = 3.0e7, e_taem = 1.0e6, e = 0.5 * (e_entry + e_taem);
   lateral.init(p, TaemTarget{}, 2.0 * M_PI / 180.0, e_entry, e_taem);
-  const double deg = M_PI / 180.0, plan_reversal = e - 1.0e6;
-  EXPECT_NEAR(lateral.half_width_rad(e), 11.5 * deg, 1e-12);
-  for (double err_deg : {-13.4, -11.6, 0.0, 11.6, 13.4}) {
-    EXPECT_TRUE(lateral.reversal_waits_for_plan(e, plan_reversal, err_deg * deg)) << err_deg;
-  }
-  for (double err_deg : {-13.6, 13.6, 30.0}) {  // past the corridor by more than the margin
-    EXPECT_FALSE(lateral.reversal_waits_for_plan(e, plan_reversal, err_deg * deg)) << err_deg;
-  }
-  EXPECT_FALSE(lateral.reversal_waits_for_plan(e, e + 1.0e5, 12.0 * deg)) << "the plan's reversal is due";
-  EXPECT_FALSE(lateral.reversal_waits_for_plan(e, 0.0, 12.0 * deg)) << "the plan has no reversal";
-  p.reversal_plan_margin_rad = 0.0;
-  EXPECT_FALSE(lateral.reversal_waits_for_plan(e, plan_reversal, 0.0)) << "margin 0: the corridor alone";
+  EXPECT_TRUE(lateral.capture_waits_for_plan(e, e - 1.0e6));
+  EXPECT_FALSE(lateral.capture_waits_for_plan(e, e + 1.0e5)) << "the plan's reversal is due";
+  EXPECT_FALSE(lateral.capture_waits_for_plan(e, 0.0)) << "the plan has no reversal";
+  p.capture_waits_for_plan = 0;
+  EXPECT_FALSE(lateral.capture_waits_for_plan(e, e - 1.0e6)) << "off";
+}
+
+// The wait holds the capture guard only. Out of the corridor on the side the bank turns to, the
+// corridor reverses whether or not the guard waits. Farther than the guard's limit from the line
+// and turning towards it (heading 10 deg into the line, 20 km off, V 5000 m/s, L 10 m/s2,
+// |sigma| 60 deg: R = V^2 / (L sin 60) = 2887 km; a turn away started now stops
+// R (1 - cos 10) + V (120 deg / (2 deg/s) + 1 s) sin 10 - 20 km = 76.8 km past the line, above the
+// 15 km limit), the guard reverses unless it waits.
+TEST(PcReversalTiming, TheWaitHoldsTheCaptureGuardNotTheCorridor) {
+  const double deg = M_PI / 180.0;
+  PredictorCorrectorParams p;
+  PcLateral lateral;
+  TaemTarget taem;
+  taem.velocity_mps = 900.0;
+  const double e_entry = 3.0e7, e_taem = 1.0e6;
+  lateral.init(p, taem, 2.0 * deg, e_entry, e_taem);
+  PcLateralInput in;
+  in.energy_Jpkg = 0.5 * (e_entry + e_taem);  // corridor half-width 8 deg
+  in.velocity_mps = 5000.0;
+  in.drag_mps2 = 10.0;
+  in.lift_mps2 = 10.0;
+  in.sigma_mag_rad = 60.0 * deg;
+  in.sigma_flown_rad = 60.0 * deg;
+  ASSERT_GT(lateral.time_to_go_s(in), p.final_reversal_window * 2.0 * in.sigma_mag_rad / (2.0 * deg))
+      << "outside the final window";
+  // The side chosen from a right turn (sign +1), the guard waiting or not.
+  const auto side_after = [&](const ArrivalGeometry& g, bool waits) {
+    PcLateralState st;
+    st.sign = 1;
+    in.capture_waits = waits;
+    lateral.decide(st, in, g);
+    return st.sign;
+  };
+  // Corridor: turning right (sign +1), heading 20 deg right of the target heading, the line 5 km
+  // to the left (inside the guard's limit).
+  ArrivalGeometry corridor;
+  corridor.cross_m = -5000.0;
+  in.heading_rad = 20.0 * deg;
+  for (bool waits : {false, true}) EXPECT_EQ(side_after(corridor, waits), -1) << "corridor, guard waits " << waits;
+  // Capture guard: the line 20 km to the right, heading 10 deg into it on the target heading,
+  // turning right.
+  ArrivalGeometry capture;
+  capture.cross_m = 20000.0;
+  capture.target_heading_rad = 10.0 * deg;
+  in.heading_rad = 10.0 * deg;
+  for (bool waits : {false, true}) EXPECT_EQ(side_after(capture, waits), waits ? 1 : -1) << "guard, waits " << waits;
 }
 
 }  // namespace

@@ -126,13 +126,10 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   const BankLawOutput law = bank_magnitude(in, params_);
   const ArrivalGeometry g =
       lateral_.geometry(s.latitude_rad, s.longitude_rad, s.velocity_mps, s.flight_path_rad, s.lift_mps2, law.sigma_rad);
-  const double heading_err = wrap_pi(s.heading_rad - g.target_heading_rad);
-  // Outside the terminal phase (its reversals are the end game's) a corridor reversal waits for
-  // the plan's.
-  if (!terminal.in_phase(s.energy_Jpkg, params_) &&
-      lateral_.reversal_waits_for_plan(s.energy_Jpkg, profile_.reversal_energy_Jpkg, heading_err)) {
-    li.hold_side = true;
-  }
+  // Outside the terminal phase (its reversals are the end game's) the capture guard waits for the
+  // plan's first reversal.
+  li.capture_waits = !terminal.in_phase(s.energy_Jpkg, params_) &&
+                     lateral_.capture_waits_for_plan(s.energy_Jpkg, profile_.reversal_energy_Jpkg);
   li.sigma_mag_rad = law.sigma_rad;
   lateral_.decide(lateral_state_, li, g);
   const int sign = lateral_state_.sign;
@@ -153,7 +150,7 @@ void PredictorCorrectorCycle::bank_command(const RelativeState& s, double alpha_
   out.phase = sign * in.sigma_flown_rad < 0.0 ? Phase::kReversal : Phase::kTracking;
   out.drag_ref_mps2 = plan.drag_mps2;
   out.drag_err_mps2 = s.drag_mps2 - plan.drag_mps2;
-  out.heading_err_rad = heading_err;
+  out.heading_err_rad = wrap_pi(s.heading_rad - g.target_heading_rad);
   write_telemetry(s, in, law, g, li, out);
 }
 

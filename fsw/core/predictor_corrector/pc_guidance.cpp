@@ -293,11 +293,9 @@ double PcLateral::half_width_rad(double energy_Jpkg) const {
   return params_->corridor_taem_rad + (params_->corridor_entry_rad - params_->corridor_taem_rad) * x;
 }
 
-bool PcLateral::reversal_waits_for_plan(double energy_Jpkg, double plan_reversal_energy_Jpkg,
-                                        double heading_err_rad) const {
-  return params_->reversal_plan_margin_rad > 0.0 && plan_reversal_energy_Jpkg > 0.0 &&
-         energy_Jpkg > plan_reversal_energy_Jpkg &&
-         std::fabs(heading_err_rad) < half_width_rad(energy_Jpkg) + params_->reversal_plan_margin_rad;
+bool PcLateral::capture_waits_for_plan(double energy_Jpkg, double plan_reversal_energy_Jpkg) const {
+  return params_->capture_waits_for_plan != 0 && plan_reversal_energy_Jpkg > 0.0 &&
+         energy_Jpkg > plan_reversal_energy_Jpkg;
 }
 
 double PcLateral::time_to_go_s(const PcLateralInput& in) const {
@@ -371,7 +369,7 @@ void PcLateral::decide_sign(PcLateralState& st, const PcLateralInput& in, const 
   const double w = half_width_rad(in.energy_Jpkg);
   if (st.sign > 0 && err > w) st.sign = -1;  // right of the corridor while turning right: bank left
   else if (st.sign < 0 && err < -w) st.sign = 1;
-  if (capture_overshoot_m(st, in, g) > p.capture_overshoot_m) st.sign = -st.sign;
+  if (!in.capture_waits && capture_overshoot_m(st, in, g) > p.capture_overshoot_m) st.sign = -st.sign;
 }
 
 double PcLateral::capture_overshoot_m(const PcLateralState& st, const PcLateralInput& in, const ArrivalGeometry& g) const {

@@ -173,6 +173,7 @@ struct PcLateralInput {
   double sigma_mag_rad = 0.0;    // bank magnitude commanded now
   double sigma_flown_rad = 0.0;  // bank flown now (signed)
   bool hold_side = false;        // the plan's reversal hold: no corridor reversal now
+  bool capture_waits = false;    // the capture guard waits for the plan's reversal (the corridor does not)
 };
 
 class PcLateral {
@@ -186,10 +187,9 @@ class PcLateral {
                            double lift_mps2, double sigma_mag_rad) const;
   /// Corridor half-width at an energy (linear from entry to TAEM, held outside).
   double half_width_rad(double energy_Jpkg) const;
-  /// Reversal timed by the plan (reversal_plan_margin): while the plan's first reversal lies below
-  /// the present energy, the corridor's reversal waits for it, unless the heading error (signed,
-  /// off the target heading) passes the corridor by the margin.
-  bool reversal_waits_for_plan(double energy_Jpkg, double plan_reversal_energy_Jpkg, double heading_err_rad) const;
+  /// Capture guard timed by the plan (capture_waits_for_plan): while the plan's first reversal lies
+  /// below the present energy, the capture guard's reversal waits for it.
+  bool capture_waits_for_plan(double energy_Jpkg, double plan_reversal_energy_Jpkg) const;
   /// The bank side (st.sign): none yet -> towards the target heading; in the final window the
   /// final and correction reversals; else reversed when the heading leaves the corridor on the
   /// side the bank turns to. Never while a roll is still under way.

@@ -105,13 +105,6 @@ struct PredictorCorrectorParams {
   // heading of a vector field onto the arrival line, narrowing linearly in energy.
   double corridor_entry_rad = 12.0 * M_PI / 180.0;  // half-width at the entry energy
   double corridor_taem_rad = 4.0 * M_PI / 180.0;    // half-width at the TAEM energy
-  // Reversal timed by the plan (cycle, outside the terminal phase): while the plan's first reversal
-  // lies below the present energy, the corridor's reversal waits for it unless the heading error
-  // passes the corridor by this much (0: the corridor alone). The prediction's lateral logic is
-  // the cycle's, so the plan's reversal is where the corridor meets the predicted heading; the
-  // flown heading can meet it earlier, at another drag, where the roll's lift-up pulse lofts the
-  // vehicle differently from the prediction.
-  double reversal_plan_margin_rad = 0.0;
   double approach_angle_max_rad = 45.0 * M_PI / 180.0;  // vector field chi_inf
   double cross_track_scale_m = 30000.0;  // vector field y_s
   double approach_turn_factor = 1.5;     // approach angle <= sqrt(2 k |y| / R_turn)
@@ -121,6 +114,13 @@ struct PredictorCorrectorParams {
   // while a turn away started now (roll, then the circular arc of the present turn) would stop
   // within capture_overshoot_m past it.
   double capture_overshoot_m = 15000.0;
+  // Capture guard timed by the plan (cycle, outside the terminal phase; 1: on): while the plan's
+  // first reversal lies below the present energy, the capture guard does not reverse (the corridor
+  // still does). The prediction flies the cycle's capture guard, so the plan's first reversal is
+  // where its test fires on the predicted state; the flown state (above the plan, banking more)
+  // can fire it earlier, at another drag, where the roll's lift-up pulse lofts the vehicle
+  // differently from the prediction.
+  int capture_waits_for_plan = 0;
   // Final reversal (the tracker's rule, docs/guidance_design.md 5.4): within the last
   // final_reversal_window reversal durations 2 |sigma| / rate before TAEM no corridor reversal;
   // the last one starts when the TAEM state it leads to balances heading error and cross-track
@@ -183,13 +183,13 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("constraint_gain_ps", p.constraint_gain_ps, U::kNone, 0.001, 10.0, "constraint bound: altitude-rate gain k_c [1/s]");
   v("corridor_entry_deg", p.corridor_entry_rad, U::kDeg, 0.5, 60.0, "heading corridor half-width at entry");
   v("corridor_taem_deg", p.corridor_taem_rad, U::kDeg, 0.5, 60.0, "heading corridor half-width at TAEM");
-  v("reversal_plan_margin_deg", p.reversal_plan_margin_rad, U::kDeg, 0.0, 60.0, "reversal timed by the plan: corridor excess that still reverses (0: none)");
   v("approach_angle_max_deg", p.approach_angle_max_rad, U::kDeg, 1.0, 90.0, "arrival-line field chi_inf");
   v("cross_track_scale_m", p.cross_track_scale_m, U::kNone, 100.0, 1e6, "arrival-line field y_s [m]");
   v("approach_turn_factor", p.approach_turn_factor, U::kNone, 0.1, 10.0, "approach-angle turn bound k");
   v("sight_line_factor", p.sight_line_factor, U::kNone, 1.0, 100.0, "approach angle <= n x the line of sight's angle off the line");
   v("aim_min_range_m", p.aim_min_range_m, U::kNone, 0.0, 1e5, "offset angle undefined closer than this [m]");
   v("capture_overshoot_m", p.capture_overshoot_m, U::kNone, 0.0, 1e6, "capture guard: largest overshoot past the line [m]");
+  v("capture_waits_for_plan", p.capture_waits_for_plan, U::kNone, 0, 1, "capture guard waits for the plan's first reversal (0: never)");
   v("final_reversal_window", p.final_reversal_window, U::kNone, 0.0, 10.0, "final-reversal window / reversal time");
   v("final_turn_steps", p.final_turn_steps, U::kNone, 5, 500, "final-turn prediction steps");
   v("bank_settled_deg", p.bank_settled_rad, U::kDeg, 0.1, 30.0, "bank settled on its command within this");
