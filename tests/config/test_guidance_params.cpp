@@ -58,7 +58,8 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
   // Orbiter's pull-out guard on every descent for its 2 deg/s bank rate (drag tracking,
   // docs/guidance_design.md 3.1) and, for the same rate, its wider heading corridor and its
   // reversal modulation on the long rolls only and not in the terminal phase, and its
-  // capture guard timed by the plan (predictor-corrector, 10.4-10.5); HORUS plans on
+  // capture guard timed by the plan and its limit growing with the distance to go
+  // (predictor-corrector, 10.4-10.5); HORUS plans on
   // the model's C_D S/m (its heat-flux limit leaves no room); the X-38's alpha band down to its
   // L/D-max alpha and the bank it keeps to turn (predictor-corrector, docs/guidance_design.md
   // 10.2-10.3), its 3-sigma C_D S/m knowledge (its q limit in the terminal dive) and its least bank
@@ -69,7 +70,8 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
   const std::map<std::string, std::set<std::string>> exceptions = {
       {"orbiter", {"tracker.pullout_guard_every_descent", "predictor_corrector.corridor_entry_deg",
                    "predictor_corrector.corridor_taem_deg", "predictor_corrector.modulation_min_roll_s",
-                   "predictor_corrector.modulation_in_terminal", "predictor_corrector.capture_waits_for_plan"}},
+                   "predictor_corrector.modulation_in_terminal", "predictor_corrector.capture_waits_for_plan",
+                   "predictor_corrector.capture_overshoot_range_fraction"}},
       {"horus", {"predictor_corrector.drag_model_uncertainty", "predictor_corrector.terminal_range_aim_fraction",
                  "predictor_corrector.reversal_hold_predictions"}},
       {"x38", {"predictor_corrector.alpha_band_deg", "predictor_corrector.lateral_bank_deg",
@@ -101,6 +103,8 @@ TEST(GuidanceParams, TheReferenceMissionsFlyTheDefaultsExceptTheirStatedExceptio
     EXPECT_EQ(setup->pc_params.modulation_min_roll_s, name == "orbiter" ? 50.0 : defaults.modulation_min_roll_s) << name;
     EXPECT_EQ(setup->pc_params.modulation_in_terminal, name == "orbiter" ? 0 : defaults.modulation_in_terminal) << name;
     EXPECT_EQ(setup->pc_params.capture_waits_for_plan, name == "orbiter" ? 1 : defaults.capture_waits_for_plan) << name;
+    EXPECT_EQ(setup->pc_params.capture_overshoot_range_fraction,
+              name == "orbiter" ? 0.01 : defaults.capture_overshoot_range_fraction) << name;
     EXPECT_NEAR(setup->pc_params.bank_min_rad, name == "x38" ? 20.0 * M_PI / 180.0 : defaults.bank_min_rad, 1e-15) << name;
     EXPECT_NEAR(setup->pc_params.bank_max_rad, name == "x33" ? 75.0 * M_PI / 180.0 : defaults.bank_max_rad, 1e-15) << name;
     EXPECT_NEAR(setup->pc_params.final_bank_max_rad, name == "x33" ? 75.0 * M_PI / 180.0 : defaults.final_bank_max_rad,

@@ -277,5 +277,38 @@ TEST(PcReversalTiming, TheWaitHoldsTheCaptureGuardNotTheCorridor) {
   for (bool waits : {false, true}) EXPECT_EQ(side_after(capture, waits), waits ? 1 : -1) << "guard, waits " << waits;
 }
 
+// The guard's limit grows with the distance to go along the line (capture_overshoot_range_fraction
+// 0.01): 20 km off the line and turning into it (a 76.8 km overshoot, as above), the guard reverses
+// 1000 km before the aim (limit 15 km) but not 3600 km before it (limit 36 km: 20 km off the line
+// is not yet past it).
+TEST(PcReversalTiming, TheCaptureGuardsLimitGrowsWithTheDistanceToGo) {
+  const double deg = M_PI / 180.0;
+  PredictorCorrectorParams p;
+  p.capture_overshoot_range_fraction = 0.01;
+  PcLateral lateral;
+  TaemTarget taem;
+  taem.velocity_mps = 900.0;
+  lateral.init(p, taem, 2.0 * deg, 3.0e7, 1.0e6);
+  PcLateralInput in;
+  in.energy_Jpkg = 1.55e7;
+  in.velocity_mps = 5000.0;
+  in.drag_mps2 = 10.0;
+  in.lift_mps2 = 10.0;
+  in.sigma_mag_rad = 60.0 * deg;
+  in.sigma_flown_rad = 60.0 * deg;
+  in.heading_rad = 10.0 * deg;
+  ArrivalGeometry g;
+  g.cross_m = 20000.0;
+  g.target_heading_rad = 10.0 * deg;
+  for (double along_km : {1000.0, 3600.0}) {
+    g.along_m = along_km * 1000.0;
+    EXPECT_NEAR(lateral.capture_limit_m(g), std::fmax(15000.0, 10.0 * along_km), 1e-6) << along_km;
+    PcLateralState st;
+    st.sign = 1;
+    lateral.decide(st, in, g);
+    EXPECT_EQ(st.sign, along_km < 2000.0 ? -1 : 1) << along_km;
+  }
+}
+
 }  // namespace
 }  // namespace reentry::fsw

@@ -187,6 +187,9 @@ class PcLateral {
                            double lift_mps2, double sigma_mag_rad) const;
   /// Corridor half-width at an energy (linear from entry to TAEM, held outside).
   double half_width_rad(double energy_Jpkg) const;
+  /// The capture guard's overshoot limit: capture_overshoot_m, or capture_overshoot_range_fraction
+  /// of the distance to go along the line when that is more.
+  double capture_limit_m(const ArrivalGeometry& g) const;
   /// Capture guard timed by the plan (capture_waits_for_plan): while the plan's first reversal lies
   /// below the present energy, the capture guard's reversal waits for it.
   bool capture_waits_for_plan(double energy_Jpkg, double plan_reversal_energy_Jpkg) const;

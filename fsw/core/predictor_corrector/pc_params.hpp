@@ -114,6 +114,9 @@ struct PredictorCorrectorParams {
   // while a turn away started now (roll, then the circular arc of the present turn) would stop
   // within capture_overshoot_m past it.
   double capture_overshoot_m = 15000.0;
+  // The guard's limit grows with the distance still to fly along the line: at least
+  // capture_overshoot_range_fraction of it (0: the fixed limit alone).
+  double capture_overshoot_range_fraction = 0.0;
   // Capture guard timed by the plan (cycle, outside the terminal phase; 1: on): while the plan's
   // first reversal lies below the present energy, the capture guard does not reverse (the corridor
   // still does). The prediction flies the cycle's capture guard, so the plan's first reversal is
@@ -189,6 +192,7 @@ void visit_pc_params(Params& p, Visitor&& v) {
   v("sight_line_factor", p.sight_line_factor, U::kNone, 1.0, 100.0, "approach angle <= n x the line of sight's angle off the line");
   v("aim_min_range_m", p.aim_min_range_m, U::kNone, 0.0, 1e5, "offset angle undefined closer than this [m]");
   v("capture_overshoot_m", p.capture_overshoot_m, U::kNone, 0.0, 1e6, "capture guard: largest overshoot past the line [m]");
+  v("capture_overshoot_range_fraction", p.capture_overshoot_range_fraction, U::kNone, 0.0, 0.2, "capture guard: limit at least this share of the distance to go along the line");
   v("capture_waits_for_plan", p.capture_waits_for_plan, U::kNone, 0, 1, "capture guard waits for the plan's first reversal (0: never)");
   v("final_reversal_window", p.final_reversal_window, U::kNone, 0.0, 10.0, "final-reversal window / reversal time");
   v("final_turn_steps", p.final_turn_steps, U::kNone, 5, 500, "final-turn prediction steps");
