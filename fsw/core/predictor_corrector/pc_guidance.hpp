@@ -172,7 +172,7 @@ struct PcLateralInput {
   double lift_mps2 = 0.0;
   double sigma_mag_rad = 0.0;    // bank magnitude commanded now
   double sigma_flown_rad = 0.0;  // bank flown now (signed)
-  bool hold_side = false;        // the plan's reversal hold: no corridor reversal now
+  bool hold_side = false;        // the plan's reversal hold: no corridor or capture-guard reversal now
   bool capture_waits = false;    // the capture guard waits for the plan's reversal (the corridor does not)
 };
 
