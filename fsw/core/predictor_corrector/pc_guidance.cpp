@@ -369,14 +369,18 @@ void PcLateral::decide_sign(PcLateralState& st, const PcLateralInput& in, const 
   const double w = half_width_rad(in.energy_Jpkg);
   if (st.sign > 0 && err > w) st.sign = -1;  // right of the corridor while turning right: bank left
   else if (st.sign < 0 && err < -w) st.sign = 1;
-  if (!in.capture_waits && capture_overshoot_m(st, in, g) > capture_limit_m(g)) st.sign = -st.sign;
+  if (!in.capture_waits) {
+    const double limit = capture_limit_m(g);
+    if (capture_overshoot_m(st, in, g, limit) > limit) st.sign = -st.sign;
+  }
 }
 
 double PcLateral::capture_limit_m(const ArrivalGeometry& g) const {
   return std::fmax(params_->capture_overshoot_m, params_->capture_overshoot_range_fraction * std::fmax(g.along_m, 0.0));
 }
 
-double PcLateral::capture_overshoot_m(const PcLateralState& st, const PcLateralInput& in, const ArrivalGeometry& g) const {
+double PcLateral::capture_overshoot_m(const PcLateralState& st, const PcLateralInput& in, const ArrivalGeometry& g,
+                                      double limit_m) const {
   // Farther than the limit from the line and turning towards it at heading psi to the line: a
   // turn away started now rolls for T = (|sigma_flown| + |sigma|) / rate + lag, flying V T sin(psi)
   // towards the line, then follows the circular arc R (1 - cos psi) of its turn radius
@@ -384,7 +388,7 @@ double PcLateral::capture_overshoot_m(const PcLateralState& st, const PcLateralI
   // in closed form). Not with the bank past 90 deg (the roll through wings level takes long).
   const int toward = g.cross_m >= 0.0 ? 1 : -1;
   const double y = std::fabs(g.cross_m);
-  if (st.sign != toward || y <= capture_limit_m(g) || in.sigma_mag_rad >= 0.5 * M_PI) return 0.0;
+  if (st.sign != toward || y <= limit_m || in.sigma_mag_rad >= 0.5 * M_PI) return 0.0;
   const double psi = toward * wrap_pi(in.heading_rad - g.line_heading_rad);
   const double turn = in.lift_mps2 * std::sin(in.sigma_mag_rad);
   if (!(psi > 0.0) || !(turn > 1e-6)) return 0.0;

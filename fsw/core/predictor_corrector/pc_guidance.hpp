@@ -203,7 +203,9 @@ class PcLateral {
 
  private:
   void decide_sign(PcLateralState& st, const PcLateralInput& in, const ArrivalGeometry& g) const;
-  double capture_overshoot_m(const PcLateralState& st, const PcLateralInput& in, const ArrivalGeometry& g) const;
+  /// Overshoot past the line of a turn away started now; 0 within limit_m of the line.
+  double capture_overshoot_m(const PcLateralState& st, const PcLateralInput& in, const ArrivalGeometry& g,
+                             double limit_m) const;
   bool final_balance_passed(const PcLateralState& st, const PcLateralInput& in, const ArrivalGeometry& g,
                             double t_go_s) const;
 

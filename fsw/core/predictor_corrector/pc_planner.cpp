@@ -285,8 +285,8 @@ void PredictorCorrectorPlanner::range_by_reversal_hold(const PredictionStart& st
   // vehicle back onto the arrival line. The miss is not monotonic in E_h (a long hold turns the
   // track past the aim), so E_h marches down from now (first from the last plan's hold) in
   // quarters of the span to the TAEM energy until a hold ends short, then regula falsi inside
-  // that bracket. The hold stops corridor and capture-guard reversals only: the final reversal and its correction
-  // still turn the vehicle onto the TAEM heading. A prediction is kept when its miss (along and
+  // that bracket. The hold stops corridor and capture-guard reversals only: the final reversal
+  // and its correction still turn the vehicle onto the TAEM heading. A prediction is kept when its miss (along and
   // across) is smaller, its TAEM heading no worse than the tolerance or the bound's, and its path
   // maxima within the mission's limits (the planned margin is the cycle's to keep).
   const double e_now = bank.e0_Jpkg;

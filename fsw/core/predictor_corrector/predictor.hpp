@@ -74,7 +74,7 @@ struct BankProfile {
   double e0_Jpkg = 0.0;
   double ef_Jpkg = 0.0;
   double terminal_altitude_m = 0.0;
-  double reversal_hold_Jpkg = 0.0;  // the bank side held (no corridor or capture-guard reversal) above it; 0: none
+  double reversal_hold_Jpkg = 0.0;  // side held (no corridor or capture-guard reversal) above it; 0: none
   double control_max() const { return bank_max_rad + 2.0 * alpha_span + (bank_far_rad - bank_max_rad); }
   double sigma0_rad() const;
   double alpha_shift_rad() const;
